@@ -1,0 +1,40 @@
+#pragma once
+// Advection of a cell-centred quantity q by face-normal velocities (flux form):
+//     rhs = -div(u_f q) = -[ (uf q)_{i+1/2} - (uf q)_{i-1/2} + (vf q)_{j+1/2} - (vf q)_{j-1/2} ] / dx
+// Used for momentum rho*u in eq. (5.1) (RK-4 stages) and, by the solids, for the
+// reference map. Face values of q are second-order central or Superbee-limited upwind.
+#include "solver/field.hpp"
+
+namespace refmap {
+
+enum class FluxScheme { Central, Superbee };
+
+/// Superbee limiter psi(r) = max(0, min(2r, 1), min(r, 2)).
+inline double superbee(double r) {
+  const double a = 2.0 * r < 1.0 ? 2.0 * r : 1.0;
+  const double b = r < 2.0 ? r : 2.0;
+  const double m = a > b ? a : b;
+  return m > 0.0 ? m : 0.0;
+}
+
+/// Limited face value between upwind cell qu (with its own upwind neighbour quu) and
+/// downwind cell qd: q_f = qu + 0.5 psi(r) (qd - qu), r = (qu - quu) / (qd - qu).
+inline double superbee_face(double quu, double qu, double qd) {
+  const double d = qd - qu;
+  if (d == 0.0) return qu;
+  return qu + 0.5 * superbee((qu - quu) / d) * d;
+}
+
+/// rhs_a = -div(u_f a), rhs_b = -div(u_f b) for two quantities sharing the face
+/// velocities (the two momentum components). q ghosts (two layers) must be filled.
+/// uf: (nx+1) x ny, vf: nx x (ny+1).
+void advect_rhs2(CView a, CView b, CView uf, CView vf, View rhs_a, View rhs_b, int nx, int ny,
+                 double dx, FluxScheme scheme);
+
+/// out = q + c * k over the interior (RK stage combination).
+void axpy_interior(CView q, CView k, double c, View out, int nx, int ny);
+
+/// q += c1*k1 + c2*k2 + c3*k3 + c4*k4 over the interior (RK-4 final combination).
+void rk4_combine(View q, CView k1, CView k2, CView k3, CView k4, double dt, int nx, int ny);
+
+}  // namespace refmap

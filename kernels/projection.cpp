@@ -1,0 +1,138 @@
+#include "kernels/projection.hpp"
+
+#include <cmath>
+
+#include "kernels/loop.hpp"
+
+namespace refmap {
+
+void face_beta(CView rho, View bx, View by, int nx, int ny, FaceBoundary fb) {
+  parallel_rows(0, ny, [&](int j) {
+    for (int i = 1; i < nx; ++i) bx(i, j) = 2.0 / (rho(i - 1, j) + rho(i, j));
+    const double edge = fb.periodic_x ? 2.0 / (rho(-1, j) + rho(0, j)) : 0.0;
+    bx(0, j) = edge;
+    bx(nx, j) = edge;
+  });
+  parallel_rows(0, ny + 1, [&](int j) {
+    const bool boundary = (j == 0 || j == ny);
+    if (boundary && !fb.periodic_y) {
+      for (int i = 0; i < nx; ++i) by(i, j) = 0.0;
+    } else {
+      const int jj = (j == ny) ? 0 : j;  // periodic: face ny repeats face 0
+      for (int i = 0; i < nx; ++i) by(i, j) = 2.0 / (rho(i, jj - 1) + rho(i, jj));
+    }
+  });
+}
+
+void face_accel(CView p, CView bx, CView by, View gx_f, View gy_f, int nx, int ny, double dx,
+                double gx, double gy, double rho_ref, FaceBoundary fb) {
+  const double inv = 1.0 / dx;
+  parallel_rows(0, ny, [&](int j) {
+    for (int i = 1; i < nx; ++i) {
+      const double b = bx(i, j);
+      gx_f(i, j) = b * (p(i, j) - p(i - 1, j)) * inv - gx * (1.0 - rho_ref * b);
+    }
+    double edge = 0.0;
+    if (fb.periodic_x) {
+      const double b = bx(0, j);
+      edge = b * (p(0, j) - p(-1, j)) * inv - gx * (1.0 - rho_ref * b);
+    }
+    gx_f(0, j) = edge;
+    gx_f(nx, j) = edge;
+  });
+  parallel_rows(0, ny + 1, [&](int j) {
+    const bool boundary = (j == 0 || j == ny);
+    if (boundary && !fb.periodic_y) {
+      for (int i = 0; i < nx; ++i) gy_f(i, j) = 0.0;
+    } else {
+      const int jj = (j == ny) ? 0 : j;
+      for (int i = 0; i < nx; ++i) {
+        const double b = by(i, jj);
+        gy_f(i, j) = b * (p(i, jj) - p(i, jj - 1)) * inv - gy * (1.0 - rho_ref * b);
+      }
+    }
+  });
+}
+
+void predict_face_velocity(CView u, CView v, CView gx_f, CView gy_f, View uf, View vf, int nx,
+                           int ny, double dt, FaceBoundary fb) {
+  parallel_rows(0, ny, [&](int j) {
+    for (int i = 1; i < nx; ++i) uf(i, j) = 0.5 * (u(i - 1, j) + u(i, j)) - dt * gx_f(i, j);
+    const double edge = fb.periodic_x ? 0.5 * (u(-1, j) + u(0, j)) - dt * gx_f(0, j) : 0.0;
+    uf(0, j) = edge;
+    uf(nx, j) = edge;
+  });
+  parallel_rows(0, ny + 1, [&](int j) {
+    const bool boundary = (j == 0 || j == ny);
+    if (boundary && !fb.periodic_y) {
+      for (int i = 0; i < nx; ++i) vf(i, j) = 0.0;
+    } else {
+      const int jj = (j == ny) ? 0 : j;
+      for (int i = 0; i < nx; ++i) vf(i, j) = 0.5 * (v(i, jj - 1) + v(i, jj)) - dt * gy_f(i, jj);
+    }
+  });
+}
+
+void face_divergence(CView uf, CView vf, View out, int nx, int ny, double dx, double scale) {
+  const double s = scale / dx;
+  parallel_rows(0, ny, [&](int j) {
+    const double* ul = &uf(0, j);
+    const double* vb = &vf(0, j);
+    const double* vt = &vf(0, j + 1);
+    double* o = &out(0, j);
+#pragma omp simd
+    for (int i = 0; i < nx; ++i) o[i] = s * (ul[i + 1] - ul[i] + vt[i] - vb[i]);
+  });
+}
+
+double max_abs_face_divergence(CView uf, CView vf, int nx, int ny, double dx) {
+  const double s = 1.0 / dx;
+  return parallel_rows_max(0, ny, [&](int j) {
+    double m = 0.0;
+    for (int i = 0; i < nx; ++i) {
+      const double d = std::abs(s * (uf(i + 1, j) - uf(i, j) + vf(i, j + 1) - vf(i, j)));
+      // NaN must propagate so a blown-up run is noticed
+      if (!(d <= m)) m = d;
+    }
+    return m;
+  });
+}
+
+void correct_face_velocity(View uf, View vf, CView dp, CView bx, CView by, int nx, int ny,
+                           double dx, double dt, FaceBoundary fb) {
+  const double c = dt / dx;
+  parallel_rows(0, ny, [&](int j) {
+    for (int i = 1; i < nx; ++i) uf(i, j) -= c * bx(i, j) * (dp(i, j) - dp(i - 1, j));
+    if (fb.periodic_x) {
+      const double e = uf(0, j) - c * bx(0, j) * (dp(0, j) - dp(-1, j));
+      uf(0, j) = e;
+      uf(nx, j) = e;
+    }
+  });
+  parallel_rows(0, ny + 1, [&](int j) {
+    const bool boundary = (j == 0 || j == ny);
+    if (boundary && !fb.periodic_y) return;
+    if (j == ny) return;  // periodic: copied from face 0 below
+    for (int i = 0; i < nx; ++i) vf(i, j) -= c * by(i, j) * (dp(i, j) - dp(i, j - 1));
+  });
+  if (fb.periodic_y)
+    for (int i = 0; i < nx; ++i) vf(i, ny) = vf(i, 0);
+}
+
+void correct_cell_velocity(View u, View v, CView gx_f, CView gy_f, int nx, int ny, double dt) {
+  const double c = 0.5 * dt;
+  parallel_rows(0, ny, [&](int j) {
+    double* ur = &u(0, j);
+    double* vr = &v(0, j);
+    const double* gx = &gx_f(0, j);
+    const double* gb = &gy_f(0, j);
+    const double* gt = &gy_f(0, j + 1);
+#pragma omp simd
+    for (int i = 0; i < nx; ++i) {
+      ur[i] -= c * (gx[i] + gx[i + 1]);
+      vr[i] -= c * (gb[i] + gt[i]);
+    }
+  });
+}
+
+}  // namespace refmap

@@ -1,0 +1,77 @@
+#pragma once
+// Everything a scene file says, after validation. solver/scene.cpp fills it from TOML;
+// the time loop (solver/simulation.cpp) only reads it.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "solver/grid.hpp"
+#include "solver/poisson.hpp"
+
+namespace refmap {
+
+enum class BcType { NoSlip, MovingWall, FreeSlip, Periodic };
+enum Side { Left = 0, Right = 1, Bottom = 2, Top = 3 };
+
+/// Boundary condition of one side. `velocity` is the tangential wall speed of a moving
+/// wall (u on bottom/top, v on left/right); the normal velocity at a wall is always 0.
+/// Periodic must be set on both sides of a direction.
+struct SideBc {
+  BcType type = BcType::NoSlip;
+  double velocity = 0.0;
+  /// Optional time dependence of a moving wall: speed = velocity * sin(omega t + phase)
+  /// when `oscillating` is true (the elastic-layer Couette flow needs it).
+  bool oscillating = false;
+  double omega = 0.0, phase = 0.0;
+  double speed(double t) const;
+};
+
+/// A named line probe: `points` samples from (x0,y0) to (x1,y1) of a cell field
+/// ("u", "v", "p", "speed", "vorticity", "density"), bilinear from cell centres.
+struct ProbeSpec {
+  std::string name, field;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int points = 2;
+};
+
+struct InitialVelocity {
+  std::string kind = "zero";  ///< "zero", "uniform", "taylor_green", "expression"
+  double u = 0.0, v = 0.0;    ///< uniform velocity
+  double amplitude = 1.0;     ///< Taylor-Green: u = A sin(k(x-x0)) cos(k(y-y0)), v = -A cos sin
+  double wavenumber = 0.0;    ///< k; 0 means 2 pi / lx
+  std::string u_expr, v_expr; ///< expression kind: functions of x, y (and pi)
+};
+
+struct Config {
+  std::string scene_path;  ///< the file it came from (for messages)
+  std::string name;        ///< scene name (file stem unless set)
+
+  Grid grid;
+  double rho_f = 1.0;  ///< fluid density
+  double mu_f = 0.0;   ///< fluid dynamic viscosity
+  std::array<SideBc, 4> bc{};
+  InitialVelocity init;
+  double gx = 0.0, gy = 0.0;  ///< gravity; acts on rho - rho_f (balanced-force, Algorithm 1 step 5)
+
+  // time
+  double t_start = 0.0, t_end = 1.0;
+  double cfl = 0.5;          ///< advective Courant number: dt (|u|+|v|)_max / dx <= cfl
+  double visc_safety = 0.9;  ///< fraction of the 2-D forward-Euler viscous bound rho dx^2/(4 mu)
+  double dt_fixed = 0.0;     ///< > 0 forces this dt
+  double dt_max = 1e30;
+  long max_steps = 0;        ///< 0 = unlimited
+  double steady_tol = 0.0;   ///< > 0: stop when max|u^{n+1}-u^n|/dt < steady_tol
+
+  // numerics
+  std::string advection = "central";  ///< "central" or "superbee"
+  PoissonOptions poisson;
+
+  // output
+  double output_interval = 0.0;  ///< simulated time between VTK frames; 0 = first and last only
+  bool write_vtk = true;
+  int diagnostics_every = 1;     ///< steps between rows of diagnostics.csv
+  double log_interval_s = 2.0;   ///< wall seconds between log lines when not on a terminal
+  std::vector<ProbeSpec> probes;
+};
+
+}  // namespace refmap

@@ -1,0 +1,56 @@
+#pragma once
+// The pressure-correction Poisson problem of Algorithm 1, step 6 (eq. 5.4):
+//
+//     (1/dx^2) * sum_faces beta_f (x_nb - x_P) = rhs_P      for every cell P,
+//
+// with beta = 1/rho on faces. beta_x is an x-face field ((nx+1) x ny, face i is the left
+// face of cell i), beta_y a y-face field (nx x (ny+1)). Walls are homogeneous Neumann:
+// the caller sets beta = 0 on wall faces. A periodic direction wraps: face 0 and face n
+// are the same face and carry the same beta. refmap has no Dirichlet pressure boundary,
+// so every problem is singular (constants are the null space): solvers project the
+// right-hand side onto zero mean and return the zero-mean solution.
+#include <memory>
+#include <string>
+
+#include "solver/field.hpp"
+#include "solver/grid.hpp"
+
+namespace refmap {
+
+struct PoissonOperator {
+  Grid grid;
+  bool periodic_x = false, periodic_y = false;
+  const Field* beta_x = nullptr;  ///< (nx+1) x ny
+  const Field* beta_y = nullptr;  ///< nx x (ny+1)
+};
+
+struct PoissonOptions {
+  std::string method = "multigrid";  ///< "multigrid", "cg" or "mgpcg"
+  std::string cycle = "V";           ///< "V" or "F"
+  std::string smoother = "rbgs";     ///< "rbgs" (red-black Gauss-Seidel) or "jacobi" (weighted)
+  int pre_smooth = 2, post_smooth = 2;
+  double tol = 1e-10;                ///< relative residual ||r||_2 / ||rhs||_2
+  int max_iter = 200;
+  int coarse_cells = 64;             ///< stop coarsening at or below this many cells
+};
+
+struct SolveStats {
+  int iterations = 0;
+  double rel_residual = 0.0;  ///< final ||r||_2 / ||rhs||_2 (0 when rhs = 0)
+  bool converged = false;
+};
+
+class PoissonSolver {
+ public:
+  virtual ~PoissonSolver() = default;
+  /// (Re)build whatever depends on the coefficients; call when beta changes.
+  virtual void setup(const PoissonOperator& op) = 0;
+  /// Solve A x = rhs; x holds the initial guess on entry. Ghosts of x are used freely.
+  virtual SolveStats solve(const Field& rhs, Field& x) = 0;
+  virtual std::string name() const = 0;
+};
+
+/// Factory: throws std::invalid_argument for an unknown method/cycle/smoother.
+std::unique_ptr<PoissonSolver> make_poisson_solver(const PoissonOptions& opt);
+
+}  // namespace refmap

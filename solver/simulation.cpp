@@ -1,0 +1,433 @@
+#include "solver/simulation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "kernels/advection.hpp"
+#include "kernels/loop.hpp"
+#include "kernels/projection.hpp"
+#include "kernels/viscous.hpp"
+#include "solver/boundary.hpp"
+#include "solver/csv.hpp"
+#include "solver/expression.hpp"
+#include "solver/probes.hpp"
+#include "solver/progress.hpp"
+#include "solver/vtk.hpp"
+
+namespace refmap {
+
+namespace {
+
+FaceBoundary face_boundary(const Config& c) { return {periodic_x(c.bc), periodic_y(c.bc)}; }
+
+double wall_seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
+  const int nx = cfg_.grid.nx, ny = cfg_.grid.ny, ng = Grid::ng;
+  for (Field* f : {&u_, &v_, &p_, &rho_, &rho_old_, &mu_, &dp_, &rhs_, &mx_, &my_, &kx_, &ky_,
+                   &sx_, &sy_, &fx_, &fy_})
+    f->resize(nx, ny, ng);
+  for (Field* f : {&uf_, &beta_x_, &gxf_}) f->resize(nx + 1, ny, ng);
+  for (Field* f : {&vf_, &beta_y_, &gyf_}) f->resize(nx, ny + 1, ng);
+  for (Field* f : {&k2x_, &k2y_, &k3x_, &k3y_, &k4x_, &k4y_}) f->resize(nx, ny, ng);
+  poisson_ = make_poisson_solver(cfg_.poisson);
+  initialise();
+}
+
+Simulation::~Simulation() = default;
+
+void Simulation::initialise() {
+  const Grid& g = cfg_.grid;
+  t_ = cfg_.t_start;
+  nstep_ = 0;
+  rho_.fill(cfg_.rho_f);
+  rho_old_.fill(cfg_.rho_f);
+  mu_.fill(cfg_.mu_f);
+  p_.fill(0.0);
+  dp_.fill(0.0);
+
+  const InitialVelocity& in = cfg_.init;
+  Expression eu, ev;
+  if (in.kind == "expression") {
+    eu = Expression(in.u_expr);
+    ev = Expression(in.v_expr);
+  }
+  const double k = in.wavenumber > 0.0 ? in.wavenumber : 2.0 * M_PI / g.lx();
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const double x = g.xc(i), y = g.yc(j);
+      double uu = 0.0, vv = 0.0;
+      if (in.kind == "uniform") {
+        uu = in.u; vv = in.v;
+      } else if (in.kind == "taylor_green") {
+        const double X = k * (x - g.x0), Y = k * (y - g.y0);
+        uu = in.amplitude * std::sin(X) * std::cos(Y);
+        vv = -in.amplitude * std::cos(X) * std::sin(Y);
+      } else if (in.kind == "expression") {
+        uu = eu.eval(x, y, t_);
+        vv = ev.eval(x, y, t_);
+      } else if (in.kind != "zero") {
+        throw std::invalid_argument("unknown initial velocity kind '" + in.kind + "'");
+      }
+      u_(i, j) = uu;
+      v_(i, j) = vv;
+    }
+  fill_scalar_ghosts(rho_, cfg_.bc);
+  fill_scalar_ghosts(mu_, cfg_.bc);
+  build_poisson_coefficients();
+
+  // Initial projection: make the face velocities exactly divergence-free (and remove the
+  // discrete divergence of the initial cell field) without touching the pressure.
+  apply_velocity_bc(u_, v_, t_);
+  const FaceBoundary fb = face_boundary(cfg_);
+  gxf_.fill(0.0);
+  gyf_.fill(0.0);
+  predict_face_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), uf_.view(), vf_.view(),
+                        g.nx, g.ny, 0.0, fb);
+  face_divergence(uf_.view(), vf_.view(), rhs_.view(), g.nx, g.ny, g.dx, 1.0);
+  dp_.fill(0.0);
+  last_stats_ = poisson_->solve(rhs_, dp_);
+  fill_scalar_ghosts(dp_, cfg_.bc);
+  correct_face_velocity(uf_.view(), vf_.view(), dp_.view(), beta_x_.view(), beta_y_.view(), g.nx,
+                        g.ny, g.dx, 1.0, fb);
+  face_accel(dp_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
+             g.dx, 0.0, 0.0, cfg_.rho_f, fb);
+  correct_cell_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny, 1.0);
+  apply_velocity_bc(u_, v_, t_);
+  dp_.fill(0.0);
+}
+
+void Simulation::apply_velocity_bc(Field& u, Field& v, double t) const {
+  fill_vector_ghosts(u, v, cfg_.bc, t);
+}
+
+void Simulation::build_poisson_coefficients() {
+  const Grid& g = cfg_.grid;
+  face_beta(rho_.view(), beta_x_.view(), beta_y_.view(), g.nx, g.ny, face_boundary(cfg_));
+  PoissonOperator op;
+  op.grid = g;
+  op.periodic_x = periodic_x(cfg_.bc);
+  op.periodic_y = periodic_y(cfg_.bc);
+  op.beta_x = &beta_x_;
+  op.beta_y = &beta_y_;
+  poisson_->setup(op);
+}
+
+double Simulation::stable_dt() const {
+  const Grid& g = cfg_.grid;
+  // advective: dt (|u| + |v|)_max / dx <= cfl (section 4; RK-4 with central fluxes is stable
+  // to a Courant number of 2.8 on the imaginary axis, the scene's cfl keeps a margin)
+  double umax = parallel_rows_max(0, g.ny, [&](int j) {
+    double m = 0.0;
+    for (int i = 0; i < g.nx; ++i) m = std::max(m, std::abs(u_(i, j)) + std::abs(v_(i, j)));
+    return m;
+  });
+  for (const SideBc& s : cfg_.bc)
+    if (s.type == BcType::MovingWall) umax = std::max(umax, std::abs(s.velocity));
+  double dt = cfg_.dt_max;
+  if (umax > 0.0) dt = std::min(dt, cfg_.cfl * g.dx / umax);
+  // viscous: forward Euler in 2-D is stable for dt <= rho dx^2 / (4 mu); the paper's
+  // 0.5 rho dx^2 / mu is the 1-D bound
+  double nu_max = parallel_rows_max(0, g.ny, [&](int j) {
+    double m = 0.0;
+    for (int i = 0; i < g.nx; ++i) m = std::max(m, mu_(i, j) / rho_(i, j));
+    return m;
+  });
+  if (nu_max > 0.0) dt = std::min(dt, cfg_.visc_safety * 0.25 * g.dx * g.dx / nu_max);
+  return dt;
+}
+
+void Simulation::project(double dt) {
+  const Grid& g = cfg_.grid;
+  const FaceBoundary fb = face_boundary(cfg_);
+  {
+    ScopedPhase ph(timers_, "face velocities");
+    apply_velocity_bc(u_, v_, t_ + dt);
+    fill_scalar_ghosts(p_, cfg_.bc);
+    // step 5, eq. (5.3): Rhie-Chow-like face velocity with the old pressure and the body force
+    face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
+               g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, fb);
+    predict_face_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), uf_.view(), vf_.view(),
+                          g.nx, g.ny, dt, fb);
+    face_divergence(uf_.view(), vf_.view(), rhs_.view(), g.nx, g.ny, g.dx, 1.0 / dt);
+  }
+  {
+    // step 6, eq. (5.4); dp from the previous step is the initial guess
+    ScopedPhase ph(timers_, "poisson");
+    last_stats_ = poisson_->solve(rhs_, dp_);
+  }
+  {
+    ScopedPhase ph(timers_, "projection");
+    fill_scalar_ghosts(dp_, cfg_.bc);
+    // step 7, eq. (5.5)
+    parallel_rows(0, g.ny, [&](int j) {
+      for (int i = 0; i < g.nx; ++i) p_(i, j) += dp_(i, j);
+    });
+    fill_scalar_ghosts(p_, cfg_.bc);
+    // step 8, eq. (5.6): exactly divergence-free face velocities
+    correct_face_velocity(uf_.view(), vf_.view(), dp_.view(), beta_x_.view(), beta_y_.view(),
+                          g.nx, g.ny, g.dx, dt, fb);
+    // step 9, eq. (5.7): cell velocities with the new pressure
+    face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
+               g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, fb);
+    correct_cell_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny, dt);
+    apply_velocity_bc(u_, v_, t_ + dt);
+  }
+}
+
+double Simulation::step(double dt) {
+  const Grid& g = cfg_.grid;
+  const int nx = g.nx, ny = g.ny;
+  if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
+  const FluxScheme scheme =
+      cfg_.advection == "superbee" ? FluxScheme::Superbee : FluxScheme::Central;
+
+  {
+    // step 4, eq. (5.1): momentum rho*u advected by the divergence-free face velocities of
+    // the previous step, RK-4 in time (the face velocities are frozen over the stages)
+    ScopedPhase ph(timers_, "advection");
+    const double t = t_;
+    parallel_rows(0, ny, [&](int j) {
+      for (int i = 0; i < nx; ++i) {
+        mx_(i, j) = rho_(i, j) * u_(i, j);
+        my_(i, j) = rho_(i, j) * v_(i, j);
+      }
+    });
+    auto rhs = [&](Field& qx, Field& qy, Field& kx, Field& ky) {
+      fill_vector_ghosts(qx, qy, cfg_.bc, t, cfg_.rho_f);
+      advect_rhs2(qx.view(), qy.view(), uf_.view(), vf_.view(), kx.view(), ky.view(), nx, ny,
+                  g.dx, scheme);
+    };
+    rhs(mx_, my_, kx_, ky_);
+    axpy_interior(mx_.view(), kx_.view(), 0.5 * dt, sx_.view(), nx, ny);
+    axpy_interior(my_.view(), ky_.view(), 0.5 * dt, sy_.view(), nx, ny);
+    rhs(sx_, sy_, k2x_, k2y_);
+    axpy_interior(mx_.view(), k2x_.view(), 0.5 * dt, sx_.view(), nx, ny);
+    axpy_interior(my_.view(), k2y_.view(), 0.5 * dt, sy_.view(), nx, ny);
+    rhs(sx_, sy_, k3x_, k3y_);
+    axpy_interior(mx_.view(), k3x_.view(), dt, sx_.view(), nx, ny);
+    axpy_interior(my_.view(), k3y_.view(), dt, sy_.view(), nx, ny);
+    rhs(sx_, sy_, k4x_, k4y_);
+    rk4_combine(mx_.view(), kx_.view(), k2x_.view(), k3x_.view(), k4x_.view(), dt, nx, ny);
+    rk4_combine(my_.view(), ky_.view(), k2y_.view(), k3y_.view(), k4y_.view(), dt, nx, ny);
+    // u* = (rho u)* / rho^{n+1}; the fluid-only density does not change
+    parallel_rows(0, ny, [&](int j) {
+      for (int i = 0; i < nx; ++i) {
+        u_(i, j) = mx_(i, j) / rho_(i, j);
+        v_(i, j) = my_(i, j) / rho_(i, j);
+      }
+    });
+  }
+  {
+    // eq. (5.2): split viscous step, forward Euler, divergence of the (blended) stress
+    ScopedPhase ph(timers_, "viscous");
+    if (cfg_.mu_f > 0.0) {
+      apply_velocity_bc(u_, v_, t_ + dt);
+      viscous_force(u_.view(), v_.view(), mu_.view(), fx_.view(), fy_.view(), nx, ny, g.dx);
+      apply_force(u_.view(), v_.view(), fx_.view(), fy_.view(), rho_.view(), dt, nx, ny);
+    }
+  }
+  project(dt);
+  t_ += dt;
+  ++nstep_;
+  return dt;
+}
+
+Field Simulation::named_field(const std::string& name) const {
+  const Grid& g = cfg_.grid;
+  Field out(g.nx, g.ny, Grid::ng);
+  if (name == "u") out = u_;
+  else if (name == "v") out = v_;
+  else if (name == "p") out = p_;
+  else if (name == "density") out = rho_;
+  else if (name == "speed") {
+    for (int j = -Grid::ng; j < g.ny + Grid::ng; ++j)
+      for (int i = -Grid::ng; i < g.nx + Grid::ng; ++i) out(i, j) = std::hypot(u_(i, j), v_(i, j));
+    return out;
+  } else if (name == "vorticity") {
+    const double s = 0.5 / g.dx;
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i)
+        out(i, j) = s * (v_(i + 1, j) - v_(i - 1, j) - u_(i, j + 1) + u_(i, j - 1));
+    // ghosts: linear extrapolation (vorticity has no boundary condition of its own)
+    for (int j = 0; j < g.ny; ++j)
+      for (int gI = 1; gI <= Grid::ng; ++gI) {
+        out(-gI, j) = 2.0 * out(-gI + 1, j) - out(-gI + 2, j);
+        out(g.nx - 1 + gI, j) = 2.0 * out(g.nx - 2 + gI, j) - out(g.nx - 3 + gI, j);
+      }
+    for (int gJ = 1; gJ <= Grid::ng; ++gJ)
+      for (int i = -Grid::ng; i < g.nx + Grid::ng; ++i) {
+        out(i, -gJ) = 2.0 * out(i, -gJ + 1) - out(i, -gJ + 2);
+        out(i, g.ny - 1 + gJ) = 2.0 * out(i, g.ny - 2 + gJ) - out(i, g.ny - 3 + gJ);
+      }
+    return out;
+  } else {
+    throw std::invalid_argument("unknown field '" + name + "'");
+  }
+  return out;
+}
+
+double Simulation::kinetic_energy() const {
+  const Grid& g = cfg_.grid;
+  return g.dx * g.dx * parallel_rows_sum(0, g.ny, [&](int j) {
+    double s = 0.0;
+    for (int i = 0; i < g.nx; ++i)
+      s += 0.5 * rho_(i, j) * (u_(i, j) * u_(i, j) + v_(i, j) * v_(i, j));
+    return s;
+  });
+}
+
+double Simulation::max_face_divergence() const {
+  const Grid& g = cfg_.grid;
+  return max_abs_face_divergence(uf_.view(), vf_.view(), g.nx, g.ny, g.dx);
+}
+
+std::string Simulation::check_health(double dt) const {
+  const Grid& g = cfg_.grid;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i)
+      if (!std::isfinite(u_(i, j)) || !std::isfinite(v_(i, j)) || !std::isfinite(p_(i, j))) {
+        char buf[256];
+        std::snprintf(buf, sizeof buf,
+                      "non-finite %s at cell (%d, %d), x = %.6g, y = %.6g, step %ld, t = %.6g",
+                      !std::isfinite(u_(i, j)) ? "u" : !std::isfinite(v_(i, j)) ? "v" : "p", i, j,
+                      g.xc(i), g.yc(j), nstep_, t_);
+        return buf;
+      }
+  // the face velocities are exactly divergence-free up to the Poisson tolerance; a
+  // relative volume change of 1% per step means the projection failed
+  double worst = 0.0;
+  int wi = 0, wj = 0;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const double d =
+          std::abs(uf_(i + 1, j) - uf_(i, j) + vf_(i, j + 1) - vf_(i, j)) / g.dx;
+      if (!(d <= worst)) { worst = d; wi = i; wj = j; }
+    }
+  if (!(worst * dt <= 1e-2)) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "face divergence exploded: |div u_f| dt = %.3g at cell (%d, %d), x = %.6g, "
+                  "y = %.6g, step %ld, t = %.6g (Poisson: %d iterations, residual %.3g)",
+                  worst * dt, wi, wj, g.xc(wi), g.yc(wj), nstep_, t_, last_stats_.iterations,
+                  last_stats_.rel_residual);
+    return buf;
+  }
+  return {};
+}
+
+RunSummary Simulation::run(const RunOptions& opt) {
+  namespace fs = std::filesystem;
+  const auto wall0 = std::chrono::steady_clock::now();
+  const Grid& g = cfg_.grid;
+  RunSummary sum;
+  const bool output = !opt.out_dir.empty();
+
+  std::unique_ptr<CsvWriter> csv;
+  std::unique_ptr<PvdSeries> pvd;
+  int frame = 0;
+  auto write_frame = [&]() {
+    if (!output || !cfg_.write_vtk) return;
+    ScopedPhase ph(timers_, "output");
+    Field vort = named_field("vorticity");
+    char name[64];
+    std::snprintf(name, sizeof name, "frame_%05d.vti", frame++);
+    write_vti((fs::path(opt.out_dir) / name).string(), g,
+              {{"p", &p_}, {"vorticity", &vort}, {"density", &rho_}}, {{"velocity", &u_, &v_}}, t_);
+    pvd->add(t_, name);
+  };
+  double last_dt = 0.0;
+  auto write_row = [&]() {
+    if (!csv) return;
+    ScopedPhase ph(timers_, "diagnostics");
+    csv->row({double(nstep_), t_, last_dt, kinetic_energy(), max_face_divergence(),
+              double(last_stats_.iterations), last_stats_.rel_residual, wall_seconds_since(wall0)});
+  };
+
+  if (output) {
+    fs::create_directories(opt.out_dir);
+    std::ostringstream head;
+    head << "refmap diagnostics, scene " << cfg_.name << ", grid " << g.nx << " x " << g.ny
+         << ", dx " << g.dx;
+    csv = std::make_unique<CsvWriter>(
+        (fs::path(opt.out_dir) / "diagnostics.csv").string(),
+        std::vector<std::string>{"step", "time", "dt", "kinetic_energy", "max_div_face",
+                                 "poisson_iterations", "poisson_residual", "wall_time"},
+        head.str());
+    pvd = std::make_unique<PvdSeries>((fs::path(opt.out_dir) / (cfg_.name + ".pvd")).string());
+  }
+  Progress progress(cfg_.t_start, cfg_.t_end, cfg_.log_interval_s, opt.progress && !opt.quiet);
+  write_frame();
+  write_row();
+
+  const double eps_t = 1e-12 * std::max(1.0, std::abs(cfg_.t_end));
+  double next_frame = cfg_.output_interval > 0.0 ? cfg_.t_start + cfg_.output_interval : cfg_.t_end;
+  Field u_old, v_old;
+  while (t_ < cfg_.t_end - eps_t) {
+    if (cfg_.max_steps > 0 && nstep_ >= cfg_.max_steps) break;
+    double dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
+    // land exactly on frame times and the end time
+    dt = std::min(dt, cfg_.t_end - t_);
+    if (output && cfg_.write_vtk && next_frame < cfg_.t_end && next_frame - t_ < dt)
+      dt = std::max(next_frame - t_, 1e-300);
+    if (cfg_.steady_tol > 0.0) { u_old = u_; v_old = v_; }
+    step(dt);
+    last_dt = dt;
+
+    std::string bad = check_health(dt);
+    if (!bad.empty()) {
+      write_row();
+      sum.failed = true;
+      sum.failure = bad;
+      break;
+    }
+    if (nstep_ % std::max(1, cfg_.diagnostics_every) == 0) write_row();
+    if (output && cfg_.write_vtk && t_ >= next_frame - eps_t && t_ < cfg_.t_end - eps_t) {
+      write_frame();
+      next_frame += cfg_.output_interval > 0.0 ? cfg_.output_interval : cfg_.t_end;
+    }
+    progress.update(t_, nstep_, dt, last_stats_.iterations, last_stats_.rel_residual);
+    if (cfg_.steady_tol > 0.0) {
+      double change = 0.0;
+      for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i)
+          change = std::max({change, std::abs(u_(i, j) - u_old(i, j)),
+                             std::abs(v_(i, j) - v_old(i, j))});
+      if (change / dt < cfg_.steady_tol) {
+        sum.steady = true;
+        progress.message("steady state reached at t = " + std::to_string(t_) +
+                         " (max |du/dt| = " + std::to_string(change / dt) + ")");
+        break;
+      }
+    }
+  }
+  progress.finish();
+  if (!sum.failed) {
+    if (nstep_ % std::max(1, cfg_.diagnostics_every) != 0) write_row();
+    write_frame();
+    if (output) {
+      ScopedPhase ph(timers_, "output");
+      for (const ProbeSpec& pr : cfg_.probes) {
+        Field f = named_field(pr.field);
+        write_probe_csv((fs::path(opt.out_dir) / ("probe_" + pr.name + ".csv")).string(), pr, g, f);
+      }
+    }
+  }
+  if (csv) csv->flush();
+  sum.steps = nstep_;
+  sum.t_end = t_;
+  sum.wall_s = wall_seconds_since(wall0);
+  return sum;
+}
+
+}  // namespace refmap
