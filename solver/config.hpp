@@ -7,6 +7,7 @@
 
 #include "solver/grid.hpp"
 #include "solver/poisson.hpp"
+#include "solver/shape.hpp"
 
 namespace refmap {
 
@@ -42,6 +43,29 @@ struct InitialVelocity {
   std::string u_expr, v_expr; ///< expression kind: functions of x, y (and pi)
 };
 
+/// One solid of a scene ([[solid]] tables).
+struct SolidSpec {
+  std::string name;
+  ShapeParams shape;          ///< reference configuration, phi0 of eq. (3.2)
+  double mu_s = 0.0;          ///< the paper's mu^s: sigma = 2 mu_s b, shear modulus G = 2 mu_s
+  double density = 1.0;       ///< rho_s
+  double viscosity = 0.0;     ///< Kelvin-Voigt solid viscosity (0: no viscous stress in the solid)
+  std::string velocity = "rigid";  ///< "rigid": u = (u, v) + omega x (x - centre); "fluid": keep the fluid's
+  double u = 0.0, v = 0.0, omega = 0.0;
+};
+
+/// Options shared by all solids ([solids] table).
+struct SolidsOptions {
+  std::string extrapolation = "lsq";  ///< "lsq" (Algorithm 2) or "pde" (Aslam 2004 baseline)
+  double band = 6.0;        ///< w_E, width of the extrapolated band, in cells
+  double transition = 3.0;  ///< w_T, half-width of the smoothed Heaviside (eq. 3.5), in cells
+  bool conservative = true; ///< divergence of the blended stress (true) or blend of divergences
+  double solid_cfl = 0.5;   ///< P of section 4: dt <= P dx / sqrt(2 mu_s / rho_s)
+  bool reinitialise = true; ///< fast-marching reinitialisation of phi0(xi)
+  double pde_tol = 1e-10;   ///< PDE baseline: stop when the band's max change per iteration < tol
+  int pde_max_iter = 1000;
+};
+
 struct Config {
   std::string scene_path;  ///< the file it came from (for messages)
   std::string name;        ///< scene name (file stem unless set)
@@ -56,7 +80,7 @@ struct Config {
   // time
   double t_start = 0.0, t_end = 1.0;
   double cfl = 0.5;          ///< advective Courant number: dt (|u|+|v|)_max / dx <= cfl
-  double visc_safety = 0.9;  ///< fraction of the 2-D forward-Euler viscous bound rho dx^2/(4 mu)
+  double visc_safety = 0.9;  ///< fraction of the forward-Euler viscous bound rho dx^2/(6 mu)
   double dt_fixed = 0.0;     ///< > 0 forces this dt
   double dt_max = 1e30;
   long max_steps = 0;        ///< 0 = unlimited
@@ -72,6 +96,14 @@ struct Config {
   int diagnostics_every = 1;     ///< steps between rows of diagnostics.csv
   double log_interval_s = 2.0;   ///< wall seconds between log lines when not on a terminal
   std::vector<ProbeSpec> probes;
+
+  // solids
+  std::vector<SolidSpec> solids;
+  SolidsOptions solid_opt;
+  /// "solve" (Navier-Stokes) or "prescribed": the initial velocity field (an expression,
+  /// possibly of t) is imposed at every step and no flow is solved (kinematic tests such
+  /// as the Zalesak disk).
+  std::string flow = "solve";
 };
 
 }  // namespace refmap

@@ -11,6 +11,7 @@
 // right-hand side onto zero mean and return the zero-mean solution.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "solver/field.hpp"
 #include "solver/grid.hpp"
@@ -32,12 +33,16 @@ struct PoissonOptions {
   double tol = 1e-10;                ///< relative residual ||r||_2 / ||rhs||_2
   int max_iter = 200;
   int coarse_cells = 64;             ///< stop coarsening at or below this many cells
+  double jacobi_omega = 0.8;         ///< weight of the "jacobi" smoother (4/5: optimal for 2-D 5-point)
+  bool record_history = false;       ///< fill SolveStats::history (allocates; tests/studies only)
 };
 
 struct SolveStats {
   int iterations = 0;
   double rel_residual = 0.0;  ///< final ||r||_2 / ||rhs||_2 (0 when rhs = 0)
   bool converged = false;
+  std::vector<double> history;  ///< relative residual before the first and after every iteration
+                                ///< (only with PoissonOptions::record_history)
 };
 
 class PoissonSolver {

@@ -6,12 +6,15 @@
 // one getter call; adding a table = one name in the top-level allow() plus a parse_xxx.
 #include "solver/scene.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -68,7 +71,14 @@ std::string fmt_num(double v) {
   return buf;
 }
 
-std::string quoted(std::string_view s) { return "\"" + std::string(s) + "\""; }
+std::string dq(std::string_view s) {
+  std::string r;
+  r.reserve(s.size() + 2);
+  r += '"';
+  r += s;
+  r += '"';
+  return r;
+}
 
 std::string type_name(const toml::node& n) {
   switch (n.type()) {
@@ -88,7 +98,7 @@ std::string type_name(const toml::node& n) {
 /// "a string (\"abc\")", "an integer (3)": for type errors.
 std::string describe(const toml::node& n) {
   std::string d = type_name(n);
-  if (auto s = n.as_string()) return d + " (" + quoted(s->get()) + ")";
+  if (auto s = n.as_string()) return d + " (" + dq(s->get()) + ")";
   if (auto i = n.as_integer()) return d + " (" + std::to_string(i->get()) + ")";
   if (auto f = n.as_floating_point()) return d + " (" + fmt_num(f->get()) + ")";
   if (auto b = n.as_boolean()) return d + " (" + (b->get() ? "true" : "false") + ")";
@@ -122,14 +132,14 @@ std::string suggestion(std::string_view word, const std::vector<std::string>& ca
   }
   const std::size_t limit = word.size() <= 3 ? 1 : (word.size() <= 6 ? 2 : 3);
   if (best.empty() || best_d > limit) return "";
-  return quote_as_string ? " (did you mean " + quoted(best) + "?)" : " (did you mean '" + best + "'?)";
+  return quote_as_string ? " (did you mean " + dq(best) + "?)" : " (did you mean '" + best + "'?)";
 }
 
 std::string join(const std::vector<std::string>& v, const std::string& sep, bool quote = false) {
   std::string s;
   for (std::size_t i = 0; i < v.size(); ++i) {
     if (i) s += sep;
-    s += quote ? quoted(v[i]) : v[i];
+    s += quote ? dq(v[i]) : v[i];
   }
   return s;
 }
@@ -150,17 +160,21 @@ struct Ctx {
     return false;
   }
 
-  [[noreturn]] void fail(const std::string& key, const toml::node* at, const std::string& what) const {
-    long line = 0, col = 0;
-    if (at) {
-      const auto& src = at->source();
-      if (src.path && *src.path == file && src.begin.line > 0) {
-        line = long(src.begin.line);
-        col = long(src.begin.column);
-      }
-    }
-    const bool set = !key.empty() && from_set(key);
-    throw SceneError(file, key, what + (set ? " (from --set)" : ""), set ? 0 : line, set ? 0 : col);
+  /// Throws the SceneError for `key`. The position is that of `where` if given (a key's
+  /// own source), else of the node `at`, when it comes from the file; a value that came
+  /// from --set (or a table created by one) is marked "(from --set)" instead.
+  [[noreturn]] void fail(const std::string& key, const toml::node* at, const std::string& what,
+                         const toml::source_region* where = nullptr) const {
+    const toml::source_region* src = where ? where : (at ? &at->source() : nullptr);
+    const bool in_file = src && src->path && *src->path == file && src->begin.line > 0;
+    bool set = !key.empty() && from_set(key);
+    if (!set && at && !in_file && !key.empty())  // a node created by an override of a key below it
+      for (const auto& o : overridden)
+        if (o.size() > key.size() && o.compare(0, key.size(), key) == 0 && (o[key.size()] == '.' || o[key.size()] == '['))
+          set = true;
+    const long line = in_file && !set ? long(src->begin.line) : 0;
+    const long col = in_file && !set ? long(src->begin.column) : 0;
+    throw SceneError(file, key, what + (set ? " (from --set)" : ""), line, col);
   }
 };
 
@@ -190,9 +204,10 @@ class Table {
   void allow(std::initializer_list<const char*> allowed) const {
     std::vector<std::string> names(allowed.begin(), allowed.end());
     const toml::node* worst = nullptr;
+    const toml::key* worst_k = nullptr;
     std::string worst_key;
-    auto pos = [](const toml::node* n) {
-      const auto& s = n->source();
+    auto pos = [](const toml::key* k) {
+      const auto& s = k->source();
       return std::pair<long, long>(s.begin.line > 0 ? long(s.begin.line) : std::numeric_limits<long>::max(),
                                    long(s.begin.column));
     };
@@ -201,7 +216,7 @@ class Table {
       bool ok = false;
       for (const auto& a : names) ok = ok || a == key;
       if (ok) continue;
-      if (!worst || pos(&v) < pos(worst)) { worst = &v; worst_key = key; }
+      if (!worst || pos(&k) < pos(worst_k)) { worst = &v; worst_k = &k; worst_key = key; }
     }
     if (!worst) return;
     std::string what = "unknown key";
@@ -210,7 +225,7 @@ class Table {
       what += sug;
     else
       what += names.empty() ? " (this table takes no keys)" : " (allowed: " + join(names, ", ") + ")";
-    ctx_.fail(full(worst_key), worst, what);
+    ctx_.fail(full(worst_key), worst, what, &worst_k->source());
   }
 
   // ---- typed getters. `def` = nullopt means required.
@@ -269,7 +284,7 @@ class Table {
     std::string s = string(key, def);
     for (const auto& c : choices)
       if (s == c) return s;
-    fail(key, "unknown value " + quoted(s) + suggestion(s, choices, true) + " (expected one of " +
+    fail(key, "unknown value " + dq(s) + suggestion(s, choices, true) + " (expected one of " +
                   join(choices, ", ", true) + ")");
   }
 
@@ -351,18 +366,18 @@ std::vector<PathComp> parse_key_path(const Ctx& ctx, const std::string& key, con
     std::size_t dot = key.find('.', i);
     if (dot == std::string::npos) dot = key.size();
     std::string part = key.substr(i, dot - i);
-    if (part.empty()) bad("malformed key " + quoted(key) + " (empty component)");
+    if (part.empty()) bad("malformed key " + dq(key) + " (empty component)");
     // name[3][4] or a pure number
     std::size_t br = part.find('[');
     std::string name = part.substr(0, br);
     if (all_digits(name)) {
-      if (out.empty()) bad("malformed key " + quoted(key) + " (starts with an index)");
+      if (out.empty()) bad("malformed key " + dq(key) + " (starts with an index)");
       out.push_back({"", std::stoul(name), true});
       norm += "[" + name + "]";
     } else {
-      if (name.empty()) bad("malformed key " + quoted(key));
+      if (name.empty()) bad("malformed key " + dq(key));
       if (name.front() == '"' || name.front() == '\'') {
-        if (name.size() < 2 || name.back() != name.front()) bad("malformed key " + quoted(key));
+        if (name.size() < 2 || name.back() != name.front()) bad("malformed key " + dq(key));
         name = name.substr(1, name.size() - 2);
       }
       out.push_back({name, 0, false});
@@ -370,13 +385,13 @@ std::vector<PathComp> parse_key_path(const Ctx& ctx, const std::string& key, con
     }
     while (br != std::string::npos) {
       const std::size_t close = part.find(']', br);
-      if (close == std::string::npos) bad("malformed key " + quoted(key) + " (missing ']')");
+      if (close == std::string::npos) bad("malformed key " + dq(key) + " (missing ']')");
       const std::string idx = part.substr(br + 1, close - br - 1);
-      if (!all_digits(idx)) bad("malformed key " + quoted(key) + " (array index must be a number)");
+      if (!all_digits(idx)) bad("malformed key " + dq(key) + " (array index must be a number)");
       out.push_back({"", std::stoul(idx), true});
       norm += "[" + idx + "]";
       br = close + 1 < part.size() ? (part[close + 1] == '[' ? close + 1 : std::string::npos) : std::string::npos;
-      if (br == std::string::npos && close + 1 < part.size()) bad("malformed key " + quoted(key));
+      if (br == std::string::npos && close + 1 < part.size()) bad("malformed key " + dq(key));
     }
     i = dot + 1;
   }
@@ -502,7 +517,7 @@ SideBc parse_side(const Ctx& ctx, const Table& b, const char* side) {
     else if (s == "periodic") bc.type = BcType::Periodic;
     else if (s == "moving_wall") bc.type = BcType::MovingWall;
     else
-      failer("unknown boundary condition " + quoted(s) + suggestion(s, kinds, true) +
+      failer("unknown boundary condition " + dq(s) + suggestion(s, kinds, true) +
              " (expected \"no_slip\", \"free_slip\", \"periodic\" or { type = \"moving_wall\", velocity = ... })");
   };
   if (auto s = n->as_string()) {
@@ -570,15 +585,26 @@ void parse_initial(const Ctx& ctx, const Table& top, Config& cfg) {
     iv.wavenumber = in.number("wavenumber", 0.0);
     in.require(iv.wavenumber >= 0, "wavenumber", "must be >= 0 (0 means 2 pi / domain.lx), got " + fmt_num(iv.wavenumber));
   } else if (iv.kind == "expression") {
-    iv.u_expr = in.string("u_expr");
-    iv.v_expr = in.string("v_expr");
+    // a plain number is accepted as an expression too (u_expr = 0)
+    auto expr_text = [&](const char* key) {
+      const toml::node* n = in.node(key);
+      if (n && n->as_integer()) return std::to_string(n->as_integer()->get());
+      if (n && n->as_floating_point()) {
+        char buf[40];
+        std::snprintf(buf, sizeof buf, "%.17g", n->as_floating_point()->get());
+        return std::string(buf);
+      }
+      return in.string(key);
+    };
+    iv.u_expr = expr_text("u_expr");
+    iv.v_expr = expr_text("v_expr");
     for (const char* k : {"u_expr", "v_expr"}) {
       const std::string& text = std::string(k) == "u_expr" ? iv.u_expr : iv.v_expr;
       try {
         Expression e(text);
         (void)e;
       } catch (const std::invalid_argument& ex) {
-        in.fail(k, "invalid expression " + quoted(text) + ": " + ex.what());
+        in.fail(k, "invalid expression " + dq(text) + ": " + ex.what());
       }
     }
   }
@@ -620,8 +646,10 @@ void parse_solver(const Ctx& ctx, const Table& top, Config& cfg) {
   const toml::table* tp = top.table("solver", false);
   if (!tp) return;
   Table s(ctx, *tp, "solver");
-  s.allow({"advection", "poisson", "cycle", "smoother", "pre_smooth", "post_smooth", "tol", "max_iter", "coarse_cells"});
+  s.allow({"flow", "advection", "poisson", "cycle", "smoother", "pre_smooth", "post_smooth", "tol", "max_iter",
+           "coarse_cells"});
   PoissonOptions& p = cfg.poisson;
+  cfg.flow = s.choice("flow", {"solve", "prescribed"}, cfg.flow);
   cfg.advection = s.choice("advection", {"central", "superbee"}, cfg.advection);
   p.method = s.choice("poisson", {"multigrid", "cg", "mgpcg"}, p.method);
   p.cycle = s.choice("cycle", {"V", "F"}, p.cycle);
@@ -675,8 +703,8 @@ void parse_probes(const Ctx& ctx, const Table& top, Config& cfg) {
     spec.name = p.string("name");
     bool ok = !spec.name.empty();
     for (char c : spec.name) ok = ok && (std::isalnum((unsigned char)c) || c == '_');
-    p.require(ok, "name", "must be a non-empty name of letters, digits and '_' (it names the output file), got " + quoted(spec.name));
-    p.require(names.insert(spec.name).second, "name", "duplicate probe name " + quoted(spec.name));
+    p.require(ok, "name", "must be a non-empty name of letters, digits and '_' (it names the output file), got " + dq(spec.name));
+    p.require(names.insert(spec.name).second, "name", "duplicate probe name " + dq(spec.name));
     spec.field = p.choice("field", fields);
     for (const char* key : {"start", "end"}) {
       const auto xy = p.vec2(key);
@@ -697,20 +725,201 @@ void parse_probes(const Ctx& ctx, const Table& top, Config& cfg) {
   }
 }
 
+void parse_solids_options(const Ctx& ctx, const Table& top, Config& cfg) {
+  const toml::table* tp = top.table("solids", false);
+  if (!tp) return;
+  Table s(ctx, *tp, "solids");
+  s.allow({"extrapolation", "band", "transition", "conservative", "solid_cfl", "reinitialise", "pde_tol", "pde_max_iter"});
+  SolidsOptions& o = cfg.solid_opt;
+  o.extrapolation = s.choice("extrapolation", {"lsq", "pde"}, o.extrapolation);
+  o.band = s.number("band", o.band);
+  s.require(o.band > 1, "band", "must be > 1 (cells), got " + fmt_num(o.band));
+  o.transition = s.number("transition", o.transition);
+  s.require(o.transition > 0, "transition", "must be > 0 (cells), got " + fmt_num(o.transition));
+  if (!(o.transition < o.band - 1)) {
+    // blame the key the user wrote (the transition if both are given)
+    if (s.has("transition"))
+      s.fail("transition", "must be < solids.band - 1 = " + fmt_num(o.band - 1) + " (the smoothed interface must lie "
+                           "inside the extrapolated band), got " + fmt_num(o.transition));
+    s.fail("band", "must be > solids.transition + 1 = " + fmt_num(o.transition + 1) +
+                       " (the smoothed interface must lie inside the extrapolated band), got " + fmt_num(o.band));
+  }
+  o.conservative = s.boolean("conservative", o.conservative);
+  o.solid_cfl = s.number("solid_cfl", o.solid_cfl);
+  s.require(o.solid_cfl > 0 && o.solid_cfl <= 2, "solid_cfl", "must be in (0, 2], got " + fmt_num(o.solid_cfl));
+  o.reinitialise = s.boolean("reinitialise", o.reinitialise);
+  o.pde_tol = s.number("pde_tol", o.pde_tol);
+  s.require(o.pde_tol > 0, "pde_tol", "must be > 0, got " + fmt_num(o.pde_tol));
+  const long mi = s.integer("pde_max_iter", o.pde_max_iter);
+  s.require(mi >= 1 && mi <= 1000000000L, "pde_max_iter", "must be in [1, 1000000000], got " + std::to_string(mi));
+  o.pde_max_iter = int(mi);
+}
+
+/// Keys of a [[solid]] that belong to the shape, per shape kind.
+struct ShapeKeys {
+  const char* kind;
+  std::vector<std::string> keys;
+};
+
+const std::vector<ShapeKeys>& shape_keys() {
+  static const std::vector<ShapeKeys> k = {
+      {"circle", {"center", "radius"}},
+      {"ellipse", {"center", "semi_axes", "angle"}},
+      {"rounded_rectangle", {"center", "half_size", "corner_radius", "angle"}},
+      {"zalesak", {"center", "radius", "slot_half_width", "slot_top", "angle"}},
+      {"tabulated", {"file"}},
+  };
+  return k;
+}
+
+void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
+  const toml::node* n = top.node("solid");
+  if (!n) return;
+  const toml::array* arr = n->as_array();
+  if (!arr) top.fail("solid", "expected an array of tables ([[solid]] sections), got " + describe(*n));
+  std::vector<std::string> kinds;
+  std::vector<std::string> all_shape_keys;
+  for (const auto& sk : shape_keys()) {
+    kinds.push_back(sk.kind);
+    for (const auto& k : sk.keys)
+      if (std::find(all_shape_keys.begin(), all_shape_keys.end(), k) == all_shape_keys.end()) all_shape_keys.push_back(k);
+  }
+  const Grid& g = cfg.grid;
+  const std::filesystem::path scene_dir = std::filesystem::path(ctx.file).parent_path();
+  // a prescribed flow moves the solids kinematically: their material is not used
+  const bool need_material = cfg.flow == "solve";
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    const std::string prefix = "solid[" + std::to_string(i) + "]";
+    const toml::table* t = arr->get(i)->as_table();
+    if (!t) ctx.fail(prefix, arr->get(i), "expected a table ([[solid]] section), got " + describe(*arr->get(i)));
+    Table s(ctx, *t, prefix);
+    s.allow({"name", "shape", "center", "radius", "semi_axes", "half_size", "corner_radius", "slot_half_width",
+             "slot_top", "angle", "file", "mu_s", "density", "viscosity", "velocity", "u", "v", "omega"});
+    SolidSpec sp;
+
+    sp.name = s.string("name", "solid" + std::to_string(i));
+    bool ok = !sp.name.empty();
+    for (char c : sp.name) ok = ok && (std::isalnum((unsigned char)c) || c == '_');
+    s.require(ok, "name", "must be a non-empty name of letters, digits and '_', got " + dq(sp.name));
+    s.require(names.insert(sp.name).second, "name", "duplicate solid name " + dq(sp.name));
+
+    // ---- shape
+    ShapeParams& sh = sp.shape;
+    sh.kind = s.choice("shape", kinds);
+    const std::vector<std::string>* own = nullptr;
+    for (const auto& sk : shape_keys())
+      if (sh.kind == sk.kind) own = &sk.keys;
+    for (const auto& k : all_shape_keys)
+      if (s.has(k) && std::find(own->begin(), own->end(), k) == own->end())
+        s.fail(k, "not a parameter of shape = " + dq(sh.kind) + " (it takes " + join(*own, ", ") + ")");
+
+    auto positive = [&](const char* key, double v) {
+      s.require(v > 0, key, "must be > 0, got " + fmt_num(v));
+    };
+    if (sh.kind != "tabulated") {
+      const auto c = s.vec2("center");
+      sh.cx = c[0];
+      sh.cy = c[1];
+      sh.angle = sh.kind == "circle" ? 0.0 : s.number("angle", 0.0);
+    }
+    if (sh.kind == "circle" || sh.kind == "zalesak") {
+      sh.radius = s.number("radius");
+      positive("radius", sh.radius);
+    }
+    if (sh.kind == "ellipse") {
+      const auto ab = s.vec2("semi_axes");
+      s.require(ab[0] > 0 && ab[1] > 0, "semi_axes",
+                "both semi-axes must be > 0, got [" + fmt_num(ab[0]) + ", " + fmt_num(ab[1]) + "]");
+      sh.a = ab[0];
+      sh.b = ab[1];
+    } else if (sh.kind == "rounded_rectangle") {
+      const auto hs = s.vec2("half_size");
+      s.require(hs[0] > 0 && hs[1] > 0, "half_size",
+                "both half-sizes must be > 0, got [" + fmt_num(hs[0]) + ", " + fmt_num(hs[1]) + "]");
+      sh.half_width = hs[0];
+      sh.half_height = hs[1];
+      sh.corner_radius = s.number("corner_radius", 0.0);
+      const double rmax = std::min(hs[0], hs[1]);
+      s.require(sh.corner_radius >= 0 && sh.corner_radius <= rmax, "corner_radius",
+                "must be in [0, min(half_size) = " + fmt_num(rmax) + "], got " + fmt_num(sh.corner_radius));
+    } else if (sh.kind == "zalesak") {
+      sh.slot_half_width = s.number("slot_half_width");
+      s.require(sh.slot_half_width > 0 && sh.slot_half_width < sh.radius, "slot_half_width",
+                "must be in (0, radius = " + fmt_num(sh.radius) + "), got " + fmt_num(sh.slot_half_width));
+      sh.slot_top = s.number("slot_top");
+      const double h = std::sqrt(sh.radius * sh.radius - sh.slot_half_width * sh.slot_half_width);
+      s.require(sh.slot_top > sh.cy - h && sh.slot_top < sh.cy + h, "slot_top",
+                "must be strictly between the y where the slot walls meet the circle, (" + fmt_num(sh.cy - h) + ", " +
+                    fmt_num(sh.cy + h) + "), got " + fmt_num(sh.slot_top));
+    } else if (sh.kind == "tabulated") {
+      const std::string f = s.string("file");
+      s.require(!f.empty(), "file", "must be a non-empty path");
+      std::filesystem::path fp(f);
+      if (fp.is_relative() && !scene_dir.empty()) fp = scene_dir / fp;
+      sh.file = fp.lexically_normal().string();
+      std::error_code ec;
+      if (!std::filesystem::exists(sh.file, ec))
+        s.fail("file", "cannot read " + dq(sh.file) + ": no such file" +
+                           (std::filesystem::path(f).is_relative() ? " (relative paths are relative to the scene file's directory)"
+                                                                   : ""));
+      if (std::filesystem::is_directory(sh.file, ec)) s.fail("file", "cannot read " + dq(sh.file) + ": is a directory");
+    }
+
+    // build it now, so that bad geometry fails at load time
+    const char* shape_key = sh.kind == "tabulated" ? "file" : "shape";
+    std::unique_ptr<Shape> shape;
+    try {
+      shape = make_shape(sh);
+    } catch (const std::exception& e) {
+      s.fail(shape_key, std::string("invalid geometry: ") + e.what());
+    }
+    const BoundingBox bb = shape->bbox();
+    const double X0 = g.x0, X1 = g.x0 + g.lx(), Y0 = g.y0, Y1 = g.y0 + g.ly();
+    if (!(bb.xmax > X0 && bb.xmin < X1 && bb.ymax > Y0 && bb.ymin < Y1))
+      s.fail(sh.kind == "tabulated" ? "file" : "center",
+             "the solid lies outside the domain: its bounding box [" + fmt_num(bb.xmin) + ", " + fmt_num(bb.xmax) +
+                 "] x [" + fmt_num(bb.ymin) + ", " + fmt_num(bb.ymax) + "] does not intersect the domain [" +
+                 fmt_num(X0) + ", " + fmt_num(X1) + "] x [" + fmt_num(Y0) + ", " + fmt_num(Y1) + "]");
+
+    // ---- material
+    const std::optional<double> no_default;
+    sp.mu_s = s.number("mu_s", need_material ? no_default : std::optional<double>(0.0));
+    s.require(sp.mu_s >= 0, "mu_s", "must be >= 0, got " + fmt_num(sp.mu_s));
+    sp.density = s.number("density", need_material ? no_default : std::optional<double>(1.0));
+    s.require(sp.density > 0, "density", "must be > 0, got " + fmt_num(sp.density));
+    sp.viscosity = s.number("viscosity", 0.0);
+    s.require(sp.viscosity >= 0, "viscosity", "must be >= 0, got " + fmt_num(sp.viscosity));
+
+    // ---- initial velocity
+    sp.velocity = s.choice("velocity", {"rigid", "fluid"}, std::string("rigid"));
+    if (sp.velocity == "fluid") {
+      for (const char* k : {"u", "v", "omega"})
+        if (s.has(k)) s.fail(k, "only used with velocity = \"rigid\" (velocity is \"fluid\": the solid keeps the fluid's velocity)");
+    } else {
+      sp.u = s.number("u", 0.0);
+      sp.v = s.number("v", 0.0);
+      sp.omega = s.number("omega", 0.0);
+    }
+    cfg.solids.push_back(std::move(sp));
+  }
+}
+
 Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>& sets) {
   for (const auto& s : sets) apply_override(ctx, root, s);
 
   Config cfg;
   cfg.scene_path = ctx.file;
   Table top(ctx, root, "");
-  top.allow({"name", "domain", "grid", "fluid", "boundary", "initial", "gravity", "time", "solver", "output", "probe"});
+  top.allow({"name", "domain", "grid", "fluid", "boundary", "initial", "gravity", "time", "solver", "output", "probe",
+             "solids", "solid"});
 
   cfg.name = std::filesystem::path(ctx.file).stem().string();
   if (top.has("name")) {
     cfg.name = top.string("name");
     const bool ok = !cfg.name.empty() && cfg.name != "." && cfg.name != ".." &&
                     cfg.name.find_first_of("/\\") == std::string::npos;
-    top.require(ok, "name", "must be a non-empty name without '/' (it names the output directory), got " + quoted(cfg.name));
+    top.require(ok, "name", "must be a non-empty name without '/' (it names the output directory), got " + dq(cfg.name));
   }
   if (cfg.name.empty()) cfg.name = "scene";
 
@@ -723,6 +932,8 @@ Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>&
   parse_solver(ctx, top, cfg);
   parse_output(ctx, top, cfg);
   parse_probes(ctx, top, cfg);
+  parse_solids_options(ctx, top, cfg);  // after parse_solver: the solids need cfg.flow
+  parse_solids(ctx, top, cfg);
   return cfg;
 }
 

@@ -12,6 +12,7 @@
 #include "kernels/advection.hpp"
 #include "kernels/loop.hpp"
 #include "kernels/projection.hpp"
+#include "kernels/solid_stress.hpp"
 #include "kernels/viscous.hpp"
 #include "solver/boundary.hpp"
 #include "solver/csv.hpp"
@@ -40,8 +41,122 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
   for (Field* f : {&uf_, &beta_x_, &gxf_}) f->resize(nx + 1, ny, ng);
   for (Field* f : {&vf_, &beta_y_, &gyf_}) f->resize(nx, ny + 1, ng);
   for (Field* f : {&k2x_, &k2y_, &k3x_, &k3y_, &k4x_, &k4y_}) f->resize(nx, ny, ng);
+  bool elastic = false;
+  for (const SolidSpec& sp : cfg_.solids) {
+    solids_.push_back(std::make_unique<Solid>(sp, cfg_.solid_opt, cfg_.grid, periodic_x(cfg_.bc),
+                                              periodic_y(cfg_.bc)));
+    elastic = elastic || sp.mu_s > 0.0;
+  }
+  if (elastic)
+    for (Field* f : {&sxx_, &sxy_, &syy_}) f->resize(nx, ny, ng);
   poisson_ = make_poisson_solver(cfg_.poisson);
   initialise();
+}
+
+namespace {
+
+/// The initial (or, for flow = "prescribed", the imposed) velocity at (x, y, t).
+struct VelocityFunction {
+  const InitialVelocity& in;
+  const Grid& g;
+  Expression eu, ev;
+  double k;
+  VelocityFunction(const InitialVelocity& init, const Grid& grid) : in(init), g(grid) {
+    if (in.kind == "expression") {
+      eu = Expression(in.u_expr);
+      ev = Expression(in.v_expr);
+    } else if (in.kind != "zero" && in.kind != "uniform" && in.kind != "taylor_green") {
+      throw std::invalid_argument("unknown initial velocity kind '" + in.kind + "'");
+    }
+    k = in.wavenumber > 0.0 ? in.wavenumber : 2.0 * M_PI / g.lx();
+  }
+  void operator()(double x, double y, double t, double& u, double& v) const {
+    u = v = 0.0;
+    if (in.kind == "uniform") {
+      u = in.u; v = in.v;
+    } else if (in.kind == "taylor_green") {
+      const double X = k * (x - g.x0), Y = k * (y - g.y0);
+      u = in.amplitude * std::sin(X) * std::cos(Y);
+      v = -in.amplitude * std::cos(X) * std::sin(Y);
+    } else if (in.kind == "expression") {
+      u = eu.eval(x, y, t);
+      v = ev.eval(x, y, t);
+    }
+  }
+};
+
+}  // namespace
+
+void Simulation::impose_prescribed_velocity(double t) {
+  const Grid& g = cfg_.grid;
+  VelocityFunction vel(cfg_.init, g);
+  double a, b;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      vel(g.xc(i), g.yc(j), t, u_(i, j), v_(i, j));
+    }
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i <= g.nx; ++i) { vel(g.xf(i), g.yc(j), t, a, b); uf_(i, j) = a; }
+  for (int j = 0; j <= g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) { vel(g.xc(i), g.yf(j), t, a, b); vf_(i, j) = b; }
+  apply_velocity_bc(u_, v_, t);
+}
+
+void Simulation::blend_material_fields() {
+  // eq. (3.6): q = q_f + sum_i (1 - H_i) (q_s,i - q_f) for density and viscosity
+  rho_.fill(cfg_.rho_f);
+  mu_.fill(cfg_.mu_f);
+  for (const auto& s : solids_) {
+    s->add_blend(rho_, s->spec().density, cfg_.rho_f);
+    s->add_blend(mu_, s->spec().viscosity, cfg_.mu_f);
+  }
+  fill_scalar_ghosts(rho_, cfg_.bc);
+  fill_scalar_ghosts(mu_, cfg_.bc);
+}
+
+void Simulation::update_solids(double dt) {
+  for (const auto& s : solids_) {
+    {
+      ScopedPhase ph(timers_, "xi advection");
+      s->advect(uf_, vf_, dt);
+    }
+    {
+      ScopedPhase ph(timers_, "extrapolation");
+      s->extrapolate();
+    }
+    {
+      ScopedPhase ph(timers_, "level set");
+      s->rebuild_level_set();
+    }
+  }
+}
+
+void Simulation::solid_force() {
+  const Grid& g = cfg_.grid;
+  elastic_energy_ = 0.0;
+  if (sxx_.nx() == 0) return;
+  if (cfg_.solid_opt.conservative) {
+    sxx_.fill(0.0);
+    sxy_.fill(0.0);
+    syy_.fill(0.0);
+  }
+  for (const auto& s : solids_) elastic_energy_ += s->add_stress(sxx_, sxy_, syy_, fx_, fy_);
+  if (cfg_.solid_opt.conservative) {
+    for (Field* f : {&sxx_, &sxy_, &syy_}) fill_scalar_ghosts(*f, cfg_.bc);
+    add_stress_divergence(sxx_.view(), sxy_.view(), syy_.view(), fx_.view(), fy_.view(), g.nx,
+                          g.ny, g.dx);
+  }
+}
+
+std::pair<double, double> Simulation::momentum() const {
+  const Grid& g = cfg_.grid;
+  double mx = 0, my = 0;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      mx += rho_(i, j) * u_(i, j);
+      my += rho_(i, j) * v_(i, j);
+    }
+  return {mx * g.dx * g.dx, my * g.dx * g.dx};
 }
 
 Simulation::~Simulation() = default;
@@ -56,34 +171,17 @@ void Simulation::initialise() {
   p_.fill(0.0);
   dp_.fill(0.0);
 
-  const InitialVelocity& in = cfg_.init;
-  Expression eu, ev;
-  if (in.kind == "expression") {
-    eu = Expression(in.u_expr);
-    ev = Expression(in.v_expr);
+  if (cfg_.flow == "prescribed") {
+    blend_material_fields();
+    impose_prescribed_velocity(t_);
+    return;
   }
-  const double k = in.wavenumber > 0.0 ? in.wavenumber : 2.0 * M_PI / g.lx();
+  VelocityFunction vel(cfg_.init, g);
   for (int j = 0; j < g.ny; ++j)
-    for (int i = 0; i < g.nx; ++i) {
-      const double x = g.xc(i), y = g.yc(j);
-      double uu = 0.0, vv = 0.0;
-      if (in.kind == "uniform") {
-        uu = in.u; vv = in.v;
-      } else if (in.kind == "taylor_green") {
-        const double X = k * (x - g.x0), Y = k * (y - g.y0);
-        uu = in.amplitude * std::sin(X) * std::cos(Y);
-        vv = -in.amplitude * std::cos(X) * std::sin(Y);
-      } else if (in.kind == "expression") {
-        uu = eu.eval(x, y, t_);
-        vv = ev.eval(x, y, t_);
-      } else if (in.kind != "zero") {
-        throw std::invalid_argument("unknown initial velocity kind '" + in.kind + "'");
-      }
-      u_(i, j) = uu;
-      v_(i, j) = vv;
-    }
-  fill_scalar_ghosts(rho_, cfg_.bc);
-  fill_scalar_ghosts(mu_, cfg_.bc);
+    for (int i = 0; i < g.nx; ++i) vel(g.xc(i), g.yc(j), t_, u_(i, j), v_(i, j));
+  for (const auto& s : solids_) s->impose_initial_velocity(u_, v_);
+  blend_material_fields();
+  rho_old_ = rho_;
   build_poisson_coefficients();
 
   // Initial projection: make the face velocities exactly divergence-free (and remove the
@@ -136,14 +234,18 @@ double Simulation::stable_dt() const {
     if (s.type == BcType::MovingWall) umax = std::max(umax, std::abs(s.velocity));
   double dt = cfg_.dt_max;
   if (umax > 0.0) dt = std::min(dt, cfg_.cfl * g.dx / umax);
-  // viscous: forward Euler in 2-D is stable for dt <= rho dx^2 / (4 mu); the paper's
-  // 0.5 rho dx^2 / mu is the 1-D bound
+  // viscous: the discrete operator of kernels/viscous.cpp (full stress mu (grad u +
+  // grad u^T), needed for the blended viscosity) has its largest eigenvalue 12 mu/(rho dx^2)
+  // (the checkerboard mode: 8 from the compact normal stress 2 mu u_xx, 4 from mu u_yy),
+  // so forward Euler is stable for dt <= rho dx^2 / (6 mu). The paper's 0.5 rho dx^2 / mu
+  // is the bound of the 1-D Laplacian.
   double nu_max = parallel_rows_max(0, g.ny, [&](int j) {
     double m = 0.0;
     for (int i = 0; i < g.nx; ++i) m = std::max(m, mu_(i, j) / rho_(i, j));
     return m;
   });
-  if (nu_max > 0.0) dt = std::min(dt, cfg_.visc_safety * 0.25 * g.dx * g.dx / nu_max);
+  if (nu_max > 0.0) dt = std::min(dt, cfg_.visc_safety * g.dx * g.dx / (6.0 * nu_max));
+  for (const auto& s : solids_) dt = std::min(dt, s->min_dt());
   return dt;
 }
 
@@ -192,6 +294,21 @@ double Simulation::step(double dt) {
   const FluxScheme scheme =
       cfg_.advection == "superbee" ? FluxScheme::Superbee : FluxScheme::Central;
 
+  if (cfg_.flow == "prescribed") {  // kinematics only: move the solids in the imposed flow
+    update_solids(dt);
+    blend_material_fields();
+    t_ += dt;
+    ++nstep_;
+    impose_prescribed_velocity(t_);
+    return dt;
+  }
+  if (!solids_.empty()) {
+    // Algorithm 1, steps 1-3: advect and extrapolate xi, rebuild phi, new rho and mu
+    rho_old_ = rho_;
+    update_solids(dt);
+    blend_material_fields();
+  }
+
   {
     // step 4, eq. (5.1): momentum rho*u advected by the divergence-free face velocities of
     // the previous step, RK-4 in time (the face velocities are frozen over the stages)
@@ -199,8 +316,8 @@ double Simulation::step(double dt) {
     const double t = t_;
     parallel_rows(0, ny, [&](int j) {
       for (int i = 0; i < nx; ++i) {
-        mx_(i, j) = rho_(i, j) * u_(i, j);
-        my_(i, j) = rho_(i, j) * v_(i, j);
+        mx_(i, j) = rho_old_(i, j) * u_(i, j);
+        my_(i, j) = rho_old_(i, j) * v_(i, j);
       }
     });
     auto rhs = [&](Field& qx, Field& qy, Field& kx, Field& ky) {
@@ -220,7 +337,7 @@ double Simulation::step(double dt) {
     rhs(sx_, sy_, k4x_, k4y_);
     rk4_combine(mx_.view(), kx_.view(), k2x_.view(), k3x_.view(), k4x_.view(), dt, nx, ny);
     rk4_combine(my_.view(), ky_.view(), k2y_.view(), k3y_.view(), k4y_.view(), dt, nx, ny);
-    // u* = (rho u)* / rho^{n+1}; the fluid-only density does not change
+    // u* = (rho u)* / rho^{n+1}
     parallel_rows(0, ny, [&](int j) {
       for (int i = 0; i < nx; ++i) {
         u_(i, j) = mx_(i, j) / rho_(i, j);
@@ -230,12 +347,28 @@ double Simulation::step(double dt) {
   }
   {
     // eq. (5.2): split viscous step, forward Euler, divergence of the (blended) stress
-    ScopedPhase ph(timers_, "viscous");
-    if (cfg_.mu_f > 0.0) {
+    bool viscous = cfg_.mu_f > 0.0, elastic = sxx_.nx() > 0;
+    for (const auto& s : solids_) viscous = viscous || s->spec().viscosity > 0.0;
+    if (viscous || elastic) {
+      ScopedPhase ph(timers_, "viscous");
       apply_velocity_bc(u_, v_, t_ + dt);
-      viscous_force(u_.view(), v_.view(), mu_.view(), fx_.view(), fy_.view(), nx, ny, g.dx);
-      apply_force(u_.view(), v_.view(), fx_.view(), fy_.view(), rho_.view(), dt, nx, ny);
+      if (viscous) {
+        viscous_force(u_.view(), v_.view(), mu_.view(), fx_.view(), fy_.view(), nx, ny, g.dx);
+      } else {
+        fx_.fill(0.0);
+        fy_.fill(0.0);
+      }
     }
+    if (elastic) {
+      ScopedPhase ph(timers_, "solid stress");
+      solid_force();
+    }
+    if (viscous || elastic)
+      apply_force(u_.view(), v_.view(), fx_.view(), fy_.view(), rho_.view(), dt, nx, ny);
+  }
+  if (!solids_.empty()) {
+    ScopedPhase ph(timers_, "poisson setup");
+    build_poisson_coefficients();
   }
   project(dt);
   t_ += dt;
@@ -326,6 +459,64 @@ std::string Simulation::check_health(double dt) const {
   return {};
 }
 
+std::vector<std::string> Simulation::diagnostic_columns() const {
+  std::vector<std::string> c{"step", "time", "dt", "kinetic_energy", "max_div_face",
+                             "poisson_iterations", "poisson_residual", "wall_time"};
+  if (!solids_.empty()) {
+    c.push_back("elastic_energy");
+    c.push_back("total_energy");
+  }
+  for (size_t k = 0; k < solids_.size(); ++k)
+    for (const char* q : {"area", "cx", "cy", "u", "v", "sigma_max"})
+      c.push_back("solid" + std::to_string(k) + "_" + q);
+  return c;
+}
+
+std::vector<double> Simulation::diagnostic_values(double last_dt, double wall) const {
+  const double ke = kinetic_energy();
+  std::vector<double> r{double(nstep_), t_, last_dt, ke, max_face_divergence(),
+                        double(last_stats_.iterations), last_stats_.rel_residual, wall};
+  if (!solids_.empty()) {
+    r.push_back(elastic_energy_);
+    r.push_back(ke + elastic_energy_);
+  }
+  for (const auto& s : solids_) {
+    const SolidDiagnostics d = s->diagnostics(u_, v_);
+    for (double q : {d.area, d.cx, d.cy, d.u, d.v, d.sigma_max}) r.push_back(q);
+  }
+  return r;
+}
+
+void Simulation::solid_output_fields(Field& phi, Field& xix, Field& xiy, Field& normal) const {
+  // the solid nearest each cell (smallest phi) gives phi and xi; 0 outside every band
+  const Grid& g = cfg_.grid;
+  phi.resize(g.nx, g.ny, Grid::ng, 1e30);
+  xix.resize(g.nx, g.ny, Grid::ng, 0.0);
+  xiy.resize(g.nx, g.ny, Grid::ng, 0.0);
+  normal.resize(g.nx, g.ny, Grid::ng, 0.0);
+  for (const auto& s : solids_) {
+    for (int j = 0; j < s->nj(); ++j)
+      for (int i = 0; i < s->ni(); ++i) {
+        const int gi = s->i0() + i, gj = s->j0() + j;
+        const double ph = s->phi()(i, j);
+        if (ph < phi(gi, gj)) {
+          phi(gi, gj) = ph;
+          if (ph < s->band()) {
+            xix(gi, gj) = s->xi_x()(i, j);
+            xiy(gi, gj) = s->xi_y()(i, j);
+          }
+        }
+      }
+  }
+  double cap = 0.0;
+  for (const auto& s : solids_) cap = std::max(cap, s->band());
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      phi(i, j) = std::min(phi(i, j), cap);
+      if (sxx_.nx() > 0) normal(i, j) = 0.5 * (sxx_(i, j) + syy_(i, j));
+    }
+}
+
 RunSummary Simulation::run(const RunOptions& opt) {
   namespace fs = std::filesystem;
   const auto wall0 = std::chrono::steady_clock::now();
@@ -342,16 +533,28 @@ RunSummary Simulation::run(const RunOptions& opt) {
     Field vort = named_field("vorticity");
     char name[64];
     std::snprintf(name, sizeof name, "frame_%05d.vti", frame++);
-    write_vti((fs::path(opt.out_dir) / name).string(), g,
-              {{"p", &p_}, {"vorticity", &vort}, {"density", &rho_}}, {{"velocity", &u_, &v_}}, t_);
+    std::vector<VtkScalar> scalars{{"p", &p_}, {"vorticity", &vort}, {"density", &rho_}};
+    std::vector<VtkVector> vectors{{"velocity", &u_, &v_}};
+    Field phi, xix, xiy, normal;
+    if (!solids_.empty()) {
+      solid_output_fields(phi, xix, xiy, normal);
+      scalars.push_back({"phi", &phi});
+      scalars.push_back({"normal_stress", &normal});
+      vectors.push_back({"xi", &xix, &xiy});
+      if (sxx_.nx() > 0) {
+        scalars.push_back({"stress_xx", &sxx_});
+        scalars.push_back({"stress_xy", &sxy_});
+        scalars.push_back({"stress_yy", &syy_});
+      }
+    }
+    write_vti((fs::path(opt.out_dir) / name).string(), g, scalars, vectors, t_);
     pvd->add(t_, name);
   };
   double last_dt = 0.0;
   auto write_row = [&]() {
     if (!csv) return;
     ScopedPhase ph(timers_, "diagnostics");
-    csv->row({double(nstep_), t_, last_dt, kinetic_energy(), max_face_divergence(),
-              double(last_stats_.iterations), last_stats_.rel_residual, wall_seconds_since(wall0)});
+    csv->row(diagnostic_values(last_dt, wall_seconds_since(wall0)));
   };
 
   if (output) {
@@ -361,9 +564,7 @@ RunSummary Simulation::run(const RunOptions& opt) {
          << ", dx " << g.dx;
     csv = std::make_unique<CsvWriter>(
         (fs::path(opt.out_dir) / "diagnostics.csv").string(),
-        std::vector<std::string>{"step", "time", "dt", "kinetic_energy", "max_div_face",
-                                 "poisson_iterations", "poisson_residual", "wall_time"},
-        head.str());
+        diagnostic_columns(), head.str());
     pvd = std::make_unique<PvdSeries>((fs::path(opt.out_dir) / (cfg_.name + ".pvd")).string());
   }
   Progress progress(cfg_.t_start, cfg_.t_end, cfg_.log_interval_s, opt.progress && !opt.quiet);

@@ -1,6 +1,7 @@
 #pragma once
 // The time loop: Algorithm 1 of Jain & Mani (fluid steps 4-9 here; solids add steps 1-3).
 #include <memory>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,7 @@
 #include "solver/field.hpp"
 #include "solver/grid.hpp"
 #include "solver/poisson.hpp"
+#include "solver/solid.hpp"
 #include "solver/timers.hpp"
 
 namespace refmap {
@@ -59,6 +61,16 @@ class Simulation {
   /// Cell field by probe/output name: u, v, p, density, speed, vorticity (ghosts filled).
   Field named_field(const std::string& name) const;
 
+  // solids
+  const std::vector<std::unique_ptr<Solid>>& solids() const { return solids_; }
+  double elastic_energy() const { return elastic_energy_; }  ///< at the last stress evaluation
+  /// Global blended solid stress (conservative form); empty when there are no elastic solids.
+  const Field& solid_stress_xx() const { return sxx_; }
+  const Field& solid_stress_xy() const { return sxy_; }
+  const Field& solid_stress_yy() const { return syy_; }
+  /// Total momentum sum rho u dx^2 (x and y).
+  std::pair<double, double> momentum() const;
+
   // diagnostics
   double kinetic_energy() const;       ///< sum 0.5 rho |u|^2 dx^2 over cells
   double max_face_divergence() const;  ///< max over cells of |div u_f| (faces' net flux / dx)
@@ -72,6 +84,15 @@ class Simulation {
  private:
   void initialise();
   void build_poisson_coefficients();
+  /// Algorithm 1 steps 1-2 for every solid, then density and viscosity of the mixture.
+  void update_solids(double dt);
+  void blend_material_fields();
+  /// Force of the solid stresses (conservative or not) into fx_, fy_ (which it overwrites).
+  void solid_force();
+  void impose_prescribed_velocity(double t);
+  std::vector<std::string> diagnostic_columns() const;
+  std::vector<double> diagnostic_values(double last_dt, double wall) const;
+  void solid_output_fields(Field& phi, Field& xix, Field& xiy, Field& normal) const;
   void project(double dt);
   /// "" if the state is healthy, else a message naming the step, time and cell.
   std::string check_health(double dt) const;
@@ -87,6 +108,9 @@ class Simulation {
   // RK-4 work arrays (momentum rho u, rho v)
   Field mx_, my_, kx_, ky_, sx_, sy_, fx_, fy_, k2x_, k2y_, k3x_, k3y_, k4x_, k4y_;
   Field gxf_, gyf_;                        // face accelerations G_f of eqs. (5.3), (5.7)
+  std::vector<std::unique_ptr<Solid>> solids_;
+  Field sxx_, sxy_, syy_;                  // blended solid stress (global, if any solid is elastic)
+  double elastic_energy_ = 0.0;
   std::unique_ptr<PoissonSolver> poisson_;
   SolveStats last_stats_;
   PhaseTimers timers_;

@@ -1,0 +1,47 @@
+#pragma once
+// Least-squares extrapolation of the reference map (Jain & Mani, section 3.2.3, Algorithm 2).
+//
+// Pass p takes every unknown cell with a known edge or corner neighbour (as of the START of
+// the pass, so the cells of a pass are independent: OpenMP-parallel, deterministic), fits a
+// plane xi = a X + b Y + c by least squares to all cells known at the start of the pass
+// within radius 4r, r = sqrt(dx^2 + dy^2) (offsets di^2 + dj^2 <= 32, i.e. up to 100
+// cells), and stores c, the plane at the target. Coordinates are integer offsets from the
+// target, so the moment sums and the 3x3 normal-matrix determinant are exact integers: the
+// fit is degenerate exactly when the known stencil cells are collinear (det == 0). One
+// factorisation (the first row of the cofactor matrix) serves both components.
+// Fallbacks (counted in ExtrapStats::fallbacks, never NaN): collinear known cells -> 1-D
+// least-squares line along them, evaluated at the target's projection; a single known cell
+// -> its value.
+// Passes stop after opt.passes or when a pass fills nothing.
+#include <cstdint>
+#include <vector>
+
+#include "kernels/extrapolate.hpp"
+
+namespace refmap {
+
+struct LsqOptions {
+  int passes = 6;  ///< max passes = band width in cells (Algorithm 2 repeats until flag2)
+  /// Optional flag2: only cells with target(i, j) != 0 may be filled (p == nullptr: any).
+  /// Same window indexing as `known`.
+  View2<const std::uint8_t> target{};
+  int parallel_min = 256;  ///< passes with fewer candidate cells run on one thread
+};
+
+/// Reusable scratch space (no allocation per call once warmed up). Not thread-safe: one
+/// workspace per concurrent call.
+struct LsqWorkspace {
+  struct Cell { int i, j; };
+  std::vector<Cell> cand, next;
+  std::vector<double> val;          // 2 per candidate (xi_x, xi_y)
+  detail::KnownExtent ext;
+};
+
+/// Fills xi_x, xi_y in unknown cells (see kernels/extrapolate.hpp for the window/domain
+/// conventions) and sets known = 1 there. `dx` is accepted for symmetry with the PDE
+/// kernel; the fit is scale-free (uniform square cells).
+ExtrapStats extrapolate_lsq(View xi_x, View xi_y, View2<std::uint8_t> known, int ni, int nj,
+                            int ng, double dx, const LsqOptions& opt = {},
+                            LsqWorkspace* ws = nullptr);
+
+}  // namespace refmap

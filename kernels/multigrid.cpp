@@ -1,0 +1,646 @@
+// Stateless OpenMP stencil kernels for the multigrid / CG Poisson solvers; see multigrid.hpp.
+#include "kernels/multigrid.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <cstdlib>
+#include <stdexcept>
+#include <utility>
+
+namespace refmap::mg {
+
+namespace {
+
+inline std::size_t round8(std::size_t n) { return (n + 7) / 8 * 8; }
+
+/// Team size: never more threads than rows (every thread then owns >= 1 row).
+inline int team(int want, int rows) { return std::max(1, std::min(want, rows)); }
+
+inline int chunk_lo(int n, int nt, int t) { return int((long long)n * t / nt); }
+
+/// Copy the periodic ghost rows (including ghost columns): row -1 <- ny-1, row ny <- 0.
+inline void copy_ghost_rows(const Stencil& s, View x) {
+  const std::size_t bytes = sizeof(double) * std::size_t(s.nx + 2);
+  std::memcpy(&x(-1, -1), &x(-1, s.ny - 1), bytes);
+  std::memcpy(&x(-1, s.ny), &x(-1, 0), bytes);
+}
+
+inline void ghost_cols(const Stencil& s, double* xr) {
+  if (s.px) {
+    xr[-1] = xr[s.nx - 1];
+    xr[s.nx] = xr[0];
+  }
+}
+
+/// One colour of a Gauss-Seidel half-sweep on row j: cells with (i + j) % 2 == colour.
+/// The whole row is computed with contiguous (vectorised) loads; only the cells of the
+/// colour are stored (masked store). Cells of the colour only read cells of the other
+/// colour, which this half-sweep does not change, so the loop has no real dependence.
+inline void rb_row(const Stencil& s, View x, CView f, int j, int colour, double omega) {
+  double* __restrict xr = &x(0, j);
+  const double* xs = &x(0, j - 1);
+  const double* xn = &x(0, j + 1);
+  const double* __restrict fr = &f(0, j);
+  const double* __restrict t = &s.tx(0, j);
+  const double* __restrict ts = &s.ty(0, j);
+  const double* __restrict tn = &s.ty(0, j + 1);
+  const double* __restrict id = &s.invd(0, j);
+  const int nx = s.nx;
+  const int par = (colour + j) & 1;
+#pragma omp simd
+  for (int i = 0; i < nx; ++i) {
+    const double v =
+        (t[i] * xr[i - 1] + t[i + 1] * xr[i + 1] + ts[i] * xs[i] + tn[i] * xn[i] - fr[i]) * id[i];
+    if ((i & 1) == par) xr[i] += omega * (v - xr[i]);
+  }
+  ghost_cols(s, xr);
+}
+
+/// (L x) on row j written as f - Lx into out[0, nx).
+inline void residual_row(const Stencil& s, CView x, CView f, int j, double* __restrict out) {
+  const double* xr = &x(0, j);
+  const double* xs = &x(0, j - 1);
+  const double* xn = &x(0, j + 1);
+  const double* fr = &f(0, j);
+  const double* t = &s.tx(0, j);
+  const double* ts = &s.ty(0, j);
+  const double* tn = &s.ty(0, j + 1);
+  const int nx = s.nx;
+#pragma omp simd
+  for (int i = 0; i < nx; ++i) {
+    const double c = xr[i];
+    out[i] = fr[i] - (t[i] * (xr[i - 1] - c) + t[i + 1] * (xr[i + 1] - c) + ts[i] * (xs[i] - c) +
+                      tn[i] * (xn[i] - c));
+  }
+}
+
+/// out[I] = sum_i P(i, I) rr[i]  (x-direction restriction of one row).
+inline void restrict_row(const Transfer1D& T, const double* __restrict rr, double* __restrict out) {
+  constexpr int K = Transfer1D::K;
+  const int* ri = T.ri.data();
+  const double* rw = T.rw.data();
+  auto general = [&](int I) {
+    double a = 0.0;
+    for (int k = 0; k < K; ++k) a += rw[I * K + k] * rr[ri[I * K + k]];
+    out[I] = a;
+  };
+  for (int I = 0; I < T.r_lo; ++I) general(I);
+  const int lo = T.r_lo, hi = T.r_hi;
+#pragma omp simd
+  for (int I = lo; I < hi; ++I)
+    out[I] = 0.25 * (rr[2 * I - 1] + rr[2 * I + 2]) + 0.75 * (rr[2 * I] + rr[2 * I + 1]);
+  for (int I = std::max(T.r_hi, T.r_lo); I < T.nc; ++I) general(I);
+}
+
+/// x[i] += sum_I P(i, I) t[I]  (x-direction prolongation of one row).
+inline void prolong_row(const Transfer1D& T, const double* __restrict t, double* __restrict x) {
+  const int* p0 = T.p0.data();
+  const int* p1 = T.p1.data();
+  const double* w0 = T.w0.data();
+  const double* w1 = T.w1.data();
+  for (int i = 0; i < 2 * T.p_lo; ++i) x[i] += w0[i] * t[p0[i]] + w1[i] * t[p1[i]];
+  const int lo = T.p_lo, hi = T.p_hi;
+#pragma omp simd
+  for (int I = lo; I < hi; ++I) {
+    const double c = 0.75 * t[I];
+    x[2 * I] += c + 0.25 * t[I - 1];
+    x[2 * I + 1] += c + 0.25 * t[I + 1];
+  }
+  for (int i = 2 * std::max(T.p_hi, T.p_lo); i < T.nf; ++i)
+    x[i] += w0[i] * t[p0[i]] + w1[i] * t[p1[i]];
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------
+Transfer1D build_transfer(const std::vector<double>& cf, const std::vector<double>& wf,
+                          double length, bool periodic, std::vector<double>& cc,
+                          std::vector<double>& cw) {
+  const int nf = int(cf.size());
+  if (nf < 2 || int(wf.size()) != nf) throw std::invalid_argument("build_transfer: need >= 2 cells");
+  const int nc = nf / 2;
+  std::vector<double> ef(nf + 1);
+  ef[0] = cf[0] - 0.5 * wf[0];
+  for (int i = 0; i < nf; ++i) ef[i + 1] = ef[i] + wf[i];
+  cc.assign(nc, 0.0);
+  cw.assign(nc, 0.0);
+  for (int I = 0; I < nc; ++I) {
+    const int lo = 2 * I, hi = (I == nc - 1) ? nf : 2 * I + 2;
+    cw[I] = ef[hi] - ef[lo];
+    cc[I] = 0.5 * (ef[lo] + ef[hi]);
+  }
+  Transfer1D T;
+  T.nf = nf;
+  T.nc = nc;
+  T.p0.assign(nf, 0);
+  T.p1.assign(nf, 0);
+  T.w0.assign(nf, 1.0);
+  T.w1.assign(nf, 0.0);
+  for (int i = 0; i < nf; ++i) {
+    const int I = std::min(i / 2, nc - 1);
+    T.p0[i] = T.p1[i] = I;
+    const double d = cf[i] - cc[I];
+    if (std::abs(d) <= 1e-9 * wf[i]) continue;  // middle child of a 3-cell coarse cell
+    int nb;
+    double cn;
+    if (d < 0) {
+      if (I > 0) { nb = I - 1; cn = cc[I - 1]; }
+      else if (periodic) { nb = nc - 1; cn = cc[nc - 1] - length; }
+      else continue;  // wall: Neumann reflection -> constant extrapolation
+    } else {
+      if (I < nc - 1) { nb = I + 1; cn = cc[I + 1]; }
+      else if (periodic) { nb = 0; cn = cc[0] + length; }
+      else continue;
+    }
+    const double wn = (cf[i] - cc[I]) / (cn - cc[I]);
+    T.p1[i] = nb;
+    T.w0[i] = 1.0 - wn;
+    T.w1[i] = wn;
+  }
+  auto near = [](double a, double b) { return std::abs(a - b) < 1e-13; };
+  auto preg = [&](int i) {
+    if (i >= nf) return false;
+    const int I = i / 2;
+    const int nb = (i & 1) ? I + 1 : I - 1;
+    return T.p0[i] == I && T.p1[i] == nb && near(T.w0[i], 0.75) && near(T.w1[i], 0.25);
+  };
+  // longest run of regular coarse cells for the prolongation fast path
+  {
+    int best_lo = 0, best_hi = 0, run_lo = -1;
+    for (int I = 0; I <= nc; ++I) {
+      const bool ok = I < nc && preg(2 * I) && preg(2 * I + 1);
+      if (ok && run_lo < 0) run_lo = I;
+      if (!ok && run_lo >= 0) {
+        if (I - run_lo > best_hi - best_lo) { best_lo = run_lo; best_hi = I; }
+        run_lo = -1;
+      }
+    }
+    T.p_lo = best_lo;
+    T.p_hi = best_hi;
+  }
+  // restriction = P^T, gathered per coarse cell
+  constexpr int K = Transfer1D::K;
+  std::vector<std::vector<std::pair<int, double>>> lists(nc);
+  static const bool pc = std::getenv("MG_PCREST") != nullptr;
+  for (int i = 0; i < nf; ++i) {
+    if (pc) { lists[std::min(i / 2, nc - 1)].push_back({i, 1.0}); continue; }
+    if (T.w0[i] > 0) lists[T.p0[i]].push_back({i, T.w0[i]});
+    if (T.w1[i] > 0) lists[T.p1[i]].push_back({i, T.w1[i]});
+  }
+  T.ri.assign(std::size_t(nc) * K, 0);
+  T.rw.assign(std::size_t(nc) * K, 0.0);
+  for (int I = 0; I < nc; ++I) {
+    if (int(lists[I].size()) > K) throw std::logic_error("build_transfer: restriction stencil too wide");
+    for (int k = 0; k < K; ++k) {
+      if (k < int(lists[I].size())) {
+        T.ri[I * K + k] = lists[I][k].first;
+        T.rw[I * K + k] = lists[I][k].second;
+      } else {
+        T.ri[I * K + k] = lists[I].empty() ? 0 : lists[I][0].first;
+        T.rw[I * K + k] = 0.0;
+      }
+    }
+  }
+  auto rreg = [&](int I) {
+    if (lists[I].size() != 4) return false;
+    const int want[4] = {2 * I - 1, 2 * I, 2 * I + 1, 2 * I + 2};
+    const double ww[4] = {0.25, 0.75, 0.75, 0.25};
+    for (int m = 0; m < 4; ++m) {
+      bool found = false;
+      for (auto& e : lists[I])
+        if (e.first == want[m] && near(e.second, ww[m])) found = true;
+      if (!found) return false;
+    }
+    return true;
+  };
+  {
+    int best_lo = 0, best_hi = 0, run_lo = -1;
+    for (int I = 0; I <= nc; ++I) {
+      const bool ok = I < nc && rreg(I);
+      if (ok && run_lo < 0) run_lo = I;
+      if (!ok && run_lo >= 0) {
+        if (I - run_lo > best_hi - best_lo) { best_lo = run_lo; best_hi = I; }
+        run_lo = -1;
+      }
+    }
+    T.r_lo = best_lo;
+    T.r_hi = best_hi;
+  }
+  return T;
+}
+
+std::size_t scratch_per_thread(int nxf, int nxc) {
+  const std::size_t restrict_need = round8(nxf) + 8 * round8(nxc);
+  const std::size_t jacobi_need = 4 * round8(nxf + 2);
+  return round8(std::max({restrict_need, jacobi_need, round8(nxc), std::size_t(8)}));
+}
+
+// ------------------------------------------------------------------------------------------
+void fill_ghosts(const Stencil& s, View x) {
+  const int nx = s.nx, ny = s.ny;
+  for (int j = 0; j < ny; ++j) {
+    x(-1, j) = s.px ? x(nx - 1, j) : x(0, j);
+    x(nx, j) = s.px ? x(0, j) : x(nx - 1, j);
+  }
+  const std::size_t bytes = sizeof(double) * std::size_t(nx + 2);
+  std::memcpy(&x(-1, -1), &x(-1, s.py ? ny - 1 : 0), bytes);
+  std::memcpy(&x(-1, ny), &x(-1, s.py ? 0 : ny - 1), bytes);
+}
+
+void smooth_rbgs(const Stencil& s, View x, CView f, int sweeps, bool black_first, double omega) {
+  if (sweeps <= 0) return;
+  const int c1 = black_first ? 1 : 0, c2 = 1 - c1;
+  const int nt_want = team(s.threads, s.ny);
+#pragma omp parallel num_threads(nt_want) if (nt_want > 1)
+  {
+    const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+    const int j0 = chunk_lo(s.ny, nt, t), j1 = chunk_lo(s.ny, nt, t + 1);
+    for (int sw = 0; sw < sweeps; ++sw) {
+      // phase 1: first colour on every row, second colour trailing one row behind on the
+      // rows whose three first-colour neighbours rows are all owned by this thread
+      for (int j = j0; j < j1; ++j) {
+        rb_row(s, x, f, j, c1, omega);
+        if (j - 1 > j0) rb_row(s, x, f, j - 1, c2, omega);
+      }
+#pragma omp barrier
+      if (s.py) {
+#pragma omp single
+        copy_ghost_rows(s, x);
+      }
+      // phase 2: second colour on the two chunk-boundary rows
+      if (j1 > j0) {
+        rb_row(s, x, f, j0, c2, omega);
+        if (j1 - 1 > j0) rb_row(s, x, f, j1 - 1, c2, omega);
+      }
+#pragma omp barrier
+      if (s.py) {
+#pragma omp single
+        copy_ghost_rows(s, x);
+      }
+    }
+  }
+}
+
+void smooth_jacobi(const Stencil& s, View x, CView f, int sweeps, double omega,
+                   const Scratch& sc) {
+  if (sweeps <= 0) return;
+  const int nx = s.nx, ny = s.ny;
+  const std::size_t W = round8(nx + 2);
+  const int nt_want = team(std::min(s.threads, sc.nthreads), ny);
+  const std::size_t bytes = sizeof(double) * std::size_t(nx + 2);
+#pragma omp parallel num_threads(nt_want) if (nt_want > 1)
+  {
+    const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+    const int j0 = chunk_lo(ny, nt, t), j1 = chunk_lo(ny, nt, t + 1);
+    double* base = sc.thread(t);
+    double* bufA = base + 1;
+    double* bufB = base + W + 1;
+    double* first = base + 2 * W + 1;  // shared: old first row of this chunk
+    double* last = base + 3 * W + 1;   // shared: old last row of this chunk
+    for (int sw = 0; sw < sweeps; ++sw) {
+      std::memcpy(first - 1, &x(-1, j0), bytes);
+      std::memcpy(last - 1, &x(-1, j1 - 1), bytes);
+#pragma omp barrier
+      const double* prev = (t == 0) ? &x(0, -1) : sc.thread(t - 1) + 3 * W + 1;
+      double* keep = bufA;
+      double* spare = bufB;
+      for (int j = j0; j < j1; ++j) {
+        const double* next = (j + 1 < j1) ? &x(0, j + 1)
+                             : (t == nt - 1 ? &x(0, ny) : sc.thread(t + 1) + 2 * W + 1);
+        std::memcpy(keep - 1, &x(-1, j), bytes);  // old row j (with ghost columns)
+        const double* c = keep;
+        double* __restrict xr = &x(0, j);
+        const double* __restrict fr = &f(0, j);
+        const double* __restrict tt = &s.tx(0, j);
+        const double* __restrict ts = &s.ty(0, j);
+        const double* __restrict tn = &s.ty(0, j + 1);
+        const double* __restrict id = &s.invd(0, j);
+#pragma omp simd
+        for (int i = 0; i < nx; ++i) {
+          const double g =
+              (tt[i] * c[i - 1] + tt[i + 1] * c[i + 1] + ts[i] * prev[i] + tn[i] * next[i] - fr[i]) *
+              id[i];
+          xr[i] = c[i] + omega * (g - c[i]);
+        }
+        ghost_cols(s, xr);
+        prev = keep;
+        std::swap(keep, spare);
+      }
+#pragma omp barrier
+      if (s.py) {
+#pragma omp single
+        copy_ghost_rows(s, x);
+      }
+    }
+  }
+}
+
+double residual(const Stencil& s, CView x, CView f, View r) {
+  const int nx = s.nx, ny = s.ny;
+  const int nt = team(s.threads, ny);
+  double acc = 0.0;
+  if (r.p) {
+#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
+    for (int j = 0; j < ny; ++j) {
+      double* rr = &r(0, j);
+      residual_row(s, x, f, j, rr);
+      double a = 0.0;
+#pragma omp simd reduction(+ : a)
+      for (int i = 0; i < nx; ++i) a += rr[i] * rr[i];
+      acc += a;
+    }
+  } else {
+#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
+    for (int j = 0; j < ny; ++j) {
+      const double* xr = &x(0, j);
+      const double* xs = &x(0, j - 1);
+      const double* xn = &x(0, j + 1);
+      const double* fr = &f(0, j);
+      const double* t = &s.tx(0, j);
+      const double* ts = &s.ty(0, j);
+      const double* tn = &s.ty(0, j + 1);
+      double a = 0.0;
+#pragma omp simd reduction(+ : a)
+      for (int i = 0; i < nx; ++i) {
+        const double c = xr[i];
+        const double v = fr[i] - (t[i] * (xr[i - 1] - c) + t[i + 1] * (xr[i + 1] - c) +
+                                  ts[i] * (xs[i] - c) + tn[i] * (xn[i] - c));
+        a += v * v;
+      }
+      acc += a;
+    }
+  }
+  return acc;
+}
+
+void residual_restrict(const Stencil& s, CView x, CView f, const Transfer1D& trx,
+                       const Transfer1D& try_, View fc, const Scratch& sc) {
+  constexpr int K = Transfer1D::K;
+  constexpr int S = 8;  // cached x-restricted residual rows per thread
+  const int ncx = trx.nc, ncy = try_.nc;
+  const std::size_t rowW = round8(s.nx), slotW = round8(ncx);
+  const int nt_want = team(std::min(s.threads, sc.nthreads), ncy);
+#pragma omp parallel num_threads(nt_want) if (nt_want > 1)
+  {
+    const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+    const int J0 = chunk_lo(ncy, nt, t), J1 = chunk_lo(ncy, nt, t + 1);
+    double* rrow = sc.thread(t);
+    double* slots = rrow + rowW;
+    int tags[S];
+    for (int k = 0; k < S; ++k) tags[k] = -1;
+    int victim = 0;
+    for (int J = J0; J < J1; ++J) {
+      double* __restrict out = &fc(0, J);
+      for (int I = 0; I < ncx; ++I) out[I] = 0.0;
+      for (int k = 0; k < K; ++k) {
+        const double w = try_.rw[J * K + k];
+        if (w == 0.0) continue;
+        const int j = try_.ri[J * K + k];
+        int slot = -1;
+        for (int m = 0; m < S; ++m)
+          if (tags[m] == j) slot = m;
+        if (slot < 0) {
+          slot = victim;
+          victim = (victim + 1) % S;
+          tags[slot] = j;
+          residual_row(s, x, f, j, rrow);
+          restrict_row(trx, rrow, slots + slot * slotW);
+        }
+        const double* __restrict src = slots + slot * slotW;
+#pragma omp simd
+        for (int I = 0; I < ncx; ++I) out[I] += w * src[I];
+      }
+    }
+  }
+}
+
+void prolong_add(const Stencil& fs, const Transfer1D& trx, const Transfer1D& try_, CView xc,
+                 View xf, const Scratch& sc) {
+  const int ncx = trx.nc;
+  const int nt_want = team(std::min(fs.threads, sc.nthreads), fs.ny);
+#pragma omp parallel num_threads(nt_want) if (nt_want > 1)
+  {
+    const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+    const int j0 = chunk_lo(fs.ny, nt, t), j1 = chunk_lo(fs.ny, nt, t + 1);
+    double* __restrict tmp = sc.thread(t);
+    for (int j = j0; j < j1; ++j) {
+      const double a = try_.w0[j], b = try_.w1[j];
+      const double* __restrict c0 = &xc(0, try_.p0[j]);
+      const double* __restrict c1 = &xc(0, try_.p1[j]);
+#pragma omp simd
+      for (int I = 0; I < ncx; ++I) tmp[I] = a * c0[I] + b * c1[I];
+      double* xr = &xf(0, j);
+      prolong_row(trx, tmp, xr);
+      ghost_cols(fs, xr);
+    }
+    if (fs.py) {
+#pragma omp barrier
+#pragma omp single
+      copy_ghost_rows(fs, xf);
+    }
+  }
+}
+
+// ------------------------------------------------------------------------------------------
+double sum(const Stencil& s, CView a) {
+  const int nt = team(s.threads, s.ny), nx = s.nx;
+  double acc = 0.0;
+#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
+  for (int j = 0; j < s.ny; ++j) {
+    const double* ar = &a(0, j);
+    double v = 0.0;
+#pragma omp simd reduction(+ : v)
+    for (int i = 0; i < nx; ++i) v += ar[i];
+    acc += v;
+  }
+  return acc;
+}
+
+double dot(const Stencil& s, CView a, CView b) {
+  const int nt = team(s.threads, s.ny), nx = s.nx;
+  double acc = 0.0;
+#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
+  for (int j = 0; j < s.ny; ++j) {
+    const double* ar = &a(0, j);
+    const double* br = &b(0, j);
+    double v = 0.0;
+#pragma omp simd reduction(+ : v)
+    for (int i = 0; i < nx; ++i) v += ar[i] * br[i];
+    acc += v;
+  }
+  return acc;
+}
+
+void fill(const Stencil& s, View a, double v) {
+  const int nt = team(s.threads, s.ny), nx = s.nx;
+#pragma omp parallel for schedule(static) num_threads(nt) if (nt > 1)
+  for (int j = 0; j < s.ny; ++j) {
+    double* ar = &a(0, j);
+#pragma omp simd
+    for (int i = 0; i < nx; ++i) ar[i] = v;
+  }
+}
+
+void fill_all(Field& a, double v) { a.fill(v); }
+
+void add_scalar(const Stencil& s, View a, double v) {
+  const int nt = team(s.threads, s.ny), nx = s.nx;
+#pragma omp parallel for schedule(static) num_threads(nt) if (nt > 1)
+  for (int j = 0; j < s.ny; ++j) {
+    double* ar = &a(0, j);
+#pragma omp simd
+    for (int i = 0; i < nx; ++i) ar[i] += v;
+  }
+}
+
+double shift_scale(const Stencil& s, CView in, double shift, double scale, View out) {
+  const int nt = team(s.threads, s.ny), nx = s.nx;
+  double acc = 0.0;
+#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
+  for (int j = 0; j < s.ny; ++j) {
+    const double* ir = &in(0, j);
+    double* orow = &out(0, j);
+    double v = 0.0;
+#pragma omp simd reduction(+ : v)
+    for (int i = 0; i < nx; ++i) {
+      const double o = scale * (ir[i] - shift);
+      orow[i] = o;
+      v += o * o;
+    }
+    acc += v;
+  }
+  return acc;
+}
+
+// ------------------------------------------------------------------------------------------
+double apply_dot(const Stencil& s, CView p, View q) {
+  const int nt = team(s.threads, s.ny), nx = s.nx;
+  double acc = 0.0;
+#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
+  for (int j = 0; j < s.ny; ++j) {
+    const double* pr = &p(0, j);
+    const double* ps = &p(0, j - 1);
+    const double* pn = &p(0, j + 1);
+    const double* t = &s.tx(0, j);
+    const double* ts = &s.ty(0, j);
+    const double* tn = &s.ty(0, j + 1);
+    double* __restrict qr = &q(0, j);
+    double v = 0.0;
+#pragma omp simd reduction(+ : v)
+    for (int i = 0; i < nx; ++i) {
+      const double c = pr[i];
+      const double l = t[i] * (pr[i - 1] - c) + t[i + 1] * (pr[i + 1] - c) + ts[i] * (ps[i] - c) +
+                       tn[i] * (pn[i] - c);
+      qr[i] = l;
+      v += c * l;
+    }
+    acc += v;
+  }
+  return acc;
+}
+
+double cg_update(const Stencil& s, double alpha, View x, CView p, View r, CView q) {
+  const int nt = team(s.threads, s.ny), nx = s.nx;
+  double acc = 0.0;
+#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
+  for (int j = 0; j < s.ny; ++j) {
+    double* __restrict xr = &x(0, j);
+    double* __restrict rr = &r(0, j);
+    const double* __restrict pr = &p(0, j);
+    const double* __restrict qr = &q(0, j);
+    double v = 0.0;
+#pragma omp simd reduction(+ : v)
+    for (int i = 0; i < nx; ++i) {
+      xr[i] += alpha * pr[i];
+      const double rn = rr[i] - alpha * qr[i];
+      rr[i] = rn;
+      v += rn * rn;
+    }
+    acc += v;
+  }
+  return acc;
+}
+
+double cg_update_jacobi(const Stencil& s, double alpha, View x, CView p, View r, CView q,
+                        double& rz) {
+  const int nt = team(s.threads, s.ny), nx = s.nx;
+  double acc = 0.0, acc_rz = 0.0;
+#pragma omp parallel for reduction(+ : acc, acc_rz) schedule(static) num_threads(nt) if (nt > 1)
+  for (int j = 0; j < s.ny; ++j) {
+    double* __restrict xr = &x(0, j);
+    double* __restrict rr = &r(0, j);
+    const double* __restrict pr = &p(0, j);
+    const double* __restrict qr = &q(0, j);
+    const double* __restrict id = &s.invd(0, j);
+    double v = 0.0, w = 0.0;
+#pragma omp simd reduction(+ : v, w)
+    for (int i = 0; i < nx; ++i) {
+      xr[i] += alpha * pr[i];
+      const double rn = rr[i] - alpha * qr[i];
+      rr[i] = rn;
+      v += rn * rn;
+      w -= rn * rn * id[i];
+    }
+    acc += v;
+    acc_rz += w;
+  }
+  rz = acc_rz;
+  return acc;
+}
+
+void cg_direction(const Stencil& s, CView z, double beta, View p) {
+  const int nt = team(s.threads, s.ny), nx = s.nx;
+#pragma omp parallel for schedule(static) num_threads(nt) if (nt > 1)
+  for (int j = 0; j < s.ny; ++j) {
+    const double* __restrict zr = &z(0, j);
+    double* __restrict pr = &p(0, j);
+    if (beta == 0.0) {  // first direction: p may hold anything
+#pragma omp simd
+      for (int i = 0; i < nx; ++i) pr[i] = zr[i];
+    } else {
+#pragma omp simd
+      for (int i = 0; i < nx; ++i) pr[i] = zr[i] + beta * pr[i];
+    }
+    ghost_cols(s, pr);
+  }
+  if (s.py) copy_ghost_rows(s, p);
+}
+
+void cg_direction_jacobi(const Stencil& s, CView r, double beta, View p) {
+  const int nt = team(s.threads, s.ny), nx = s.nx;
+#pragma omp parallel for schedule(static) num_threads(nt) if (nt > 1)
+  for (int j = 0; j < s.ny; ++j) {
+    const double* __restrict rr = &r(0, j);
+    const double* __restrict id = &s.invd(0, j);
+    double* __restrict pr = &p(0, j);
+#pragma omp simd
+    for (int i = 0; i < nx; ++i) pr[i] = -id[i] * rr[i] + beta * pr[i];
+    ghost_cols(s, pr);
+  }
+  if (s.py) copy_ghost_rows(s, p);
+}
+
+double jacobi_precondition(const Stencil& s, CView r, View z) {
+  const int nt = team(s.threads, s.ny), nx = s.nx;
+  double acc = 0.0;
+#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
+  for (int j = 0; j < s.ny; ++j) {
+    const double* __restrict rr = &r(0, j);
+    const double* __restrict id = &s.invd(0, j);
+    double* __restrict zr = &z(0, j);
+    double v = 0.0;
+#pragma omp simd reduction(+ : v)
+    for (int i = 0; i < nx; ++i) {
+      const double zz = -id[i] * rr[i];
+      zr[i] = zz;
+      v += rr[i] * zz;
+    }
+    acc += v;
+  }
+  return acc;
+}
+
+}  // namespace refmap::mg

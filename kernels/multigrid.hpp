@@ -1,0 +1,134 @@
+#pragma once
+// Stateless OpenMP stencil kernels for the matrix-free Poisson solvers
+// (solver/poisson_multigrid.*, solver/poisson_cg.*).
+//
+// Every multigrid level is written in cell-integrated (finite-volume) form
+//
+//     (L x)_P = sum_faces T_f (x_nb - x_P),
+//
+// where T_f = beta_f * face_length / centre_distance with lengths in units of the finest
+// cell. On the finest level T = beta and L = dx^2 * A (A the operator of solver/poisson.hpp),
+// and the right-hand side f is the cell-integrated source dx^2 * rhs. Coarse right-hand
+// sides f_c = P^T r are again cell integrated, so no level carries a 1/h^2 factor.
+//
+// Conventions shared by all kernels:
+//  * arrays are View/CView (pointer to (0,0) + row stride) with at least ONE ghost layer;
+//  * tx(i,j), i in [0,nx], is the x-face between cells (i-1,j) and (i,j); ty(i,j), j in
+//    [0,ny], the y-face between (i,j-1) and (i,j). Wall faces carry T = 0; a periodic
+//    direction has T(0) == T(n) and reads the wrapped value through the ghost layer;
+//  * a kernel that reads neighbours of x expects the first ghost layer of x to be
+//    "consistent": periodic ghosts hold the wrapped interior value, wall ghosts any finite
+//    number (they are multiplied by T = 0). Kernels that write x leave it consistent;
+//  * Stencil::threads is the OpenMP team size (1 = serial, no parallel region is opened).
+//    Kernels taking a Scratch need threads <= Scratch::nthreads.
+#include <cstddef>
+#include <vector>
+
+#include "solver/field.hpp"
+
+namespace refmap::mg {
+
+/// One level's 5-point operator (non-owning).
+struct Stencil {
+  int nx = 0, ny = 0;
+  bool px = false, py = false;  ///< periodic in x / y
+  CView tx;                     ///< (nx+1) x ny face coefficients
+  CView ty;                     ///< nx x (ny+1) face coefficients
+  CView invd;                   ///< nx x ny: 1 / sum_f T_f (0 for a cell with no faces)
+  int threads = 1;              ///< OpenMP team size for this level's kernels
+};
+
+/// Per-thread work space: thread t owns [p + t*per_thread, p + (t+1)*per_thread).
+struct Scratch {
+  double* p = nullptr;
+  std::size_t per_thread = 0;
+  int nthreads = 0;
+  double* thread(int t) const { return p + std::size_t(t) * per_thread; }
+};
+
+/// Transfer operators between a fine and a coarse 1-D cell partition (one per direction).
+/// Prolongation (per fine index i):  e_f(i) = w0[i] e_c(p0[i]) + w1[i] e_c(p1[i]),
+/// linear interpolation between coarse centres (Neumann reflection at walls: weight 1 on
+/// the parent, periodic: wrapped neighbour). Restriction is exactly P^T, stored per coarse
+/// index I as K (fine index, weight) pairs padded with zero weights.
+/// On the "regular" coarse range [p_lo,p_hi) fine cells 2I, 2I+1 interpolate with the
+/// standard 3/4, 1/4 weights from I and I-1 / I+1; on [r_lo,r_hi) the restriction is the
+/// standard (1/4, 3/4, 3/4, 1/4) on fine 2I-1..2I+2. Kernels use vectorised fast paths there.
+struct Transfer1D {
+  static constexpr int K = 5;
+  int nf = 0, nc = 0;
+  std::vector<int> p0, p1;
+  std::vector<double> w0, w1;
+  int p_lo = 0, p_hi = 0;
+  std::vector<int> ri;     ///< nc*K
+  std::vector<double> rw;  ///< nc*K
+  int r_lo = 0, r_hi = 0;
+};
+
+/// Build the 1-D transfer from a fine partition (cell centres and widths in finest-cell
+/// units, total length `length`) to the coarse partition obtained by pairing cells
+/// (coarse I covers fine 2I, 2I+1; when nf is odd the last coarse cell covers three).
+/// Returns coarse centres/widths through cc, cw. Requires nf >= 2.
+Transfer1D build_transfer(const std::vector<double>& cf, const std::vector<double>& wf,
+                          double length, bool periodic, std::vector<double>& cc,
+                          std::vector<double>& cw);
+
+/// Per-thread scratch (doubles) the kernels below need for a fine row of nxf cells and a
+/// coarse row of nxc cells.
+std::size_t scratch_per_thread(int nxf, int nxc);
+
+/// Fill the first ghost layer of x: periodic -> wrapped value, wall -> copy of the interior.
+void fill_ghosts(const Stencil& s, View x);
+
+/// `sweeps` red-black Gauss-Seidel sweeps (red = (i+j) even), over-relaxed by omega
+/// (x <- x + omega (x_GS - x); omega = 1: plain Gauss-Seidel). black_first reverses the
+/// colour order (red-black before and black-red after the coarse correction make the
+/// V-cycle symmetric). One fused pass over memory per sweep: the second colour trails the
+/// first by one row. On a periodic direction of odd length the two cells meeting across
+/// the periodic boundary may have the same colour; they are then updated Jacobi-like
+/// (both from old values), which keeps every half-sweep symmetric.
+void smooth_rbgs(const Stencil& s, View x, CView f, int sweeps, bool black_first,
+                 double omega = 1.0);
+
+/// `sweeps` weighted-Jacobi sweeps x <- x + omega D^{-1} (f - L x), one pass per sweep
+/// (old rows kept in per-thread row buffers).
+void smooth_jacobi(const Stencil& s, View x, CView f, int sweeps, double omega,
+                   const Scratch& sc);
+
+/// r = f - L x (r may be a null view: only the norm), returns sum r^2.
+double residual(const Stencil& s, CView x, CView f, View r);
+
+/// fc = P^T (f - L x) on the coarse grid described by (tx, ty); fused: the fine residual
+/// is never stored (row-wise, cached in scratch).
+void residual_restrict(const Stencil& s, CView x, CView f, const Transfer1D& trx,
+                       const Transfer1D& try_, View fc, const Scratch& sc);
+
+/// x_f += P x_c (bilinear), ghosts of x_f refreshed.
+void prolong_add(const Stencil& fine, const Transfer1D& trx, const Transfer1D& try_, CView xc,
+                 View xf, const Scratch& sc);
+
+// ---- vector helpers on the nx x ny interior (team size s.threads) ----
+double sum(const Stencil& s, CView a);
+double dot(const Stencil& s, CView a, CView b);
+void fill(const Stencil& s, View a, double v);            ///< interior only
+void fill_all(Field& a, double v);                         ///< including ghosts
+void add_scalar(const Stencil& s, View a, double v);      ///< interior only
+/// out = scale * (in - shift); returns sum out^2.
+double shift_scale(const Stencil& s, CView in, double shift, double scale, View out);
+
+// ---- conjugate-gradient building blocks (operator L, negative semi-definite) ----
+/// q = L p, returns p.q (p ghosts consistent).
+double apply_dot(const Stencil& s, CView p, View q);
+/// x += alpha p; r -= alpha q; returns r.r.
+double cg_update(const Stencil& s, double alpha, View x, CView p, View r, CView q);
+/// Same with Jacobi preconditioning z = D^{-1} r (D = diag L = -1/invd): also rz = r.z.
+double cg_update_jacobi(const Stencil& s, double alpha, View x, CView p, View r, CView q,
+                        double& rz);
+/// p = z + beta p, ghosts refreshed.
+void cg_direction(const Stencil& s, CView z, double beta, View p);
+/// p = D^{-1} r + beta p, ghosts refreshed.
+void cg_direction_jacobi(const Stencil& s, CView r, double beta, View p);
+/// z = D^{-1} r; returns r.z.
+double jacobi_precondition(const Stencil& s, CView r, View z);
+
+}  // namespace refmap::mg

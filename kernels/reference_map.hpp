@@ -1,0 +1,20 @@
+#pragma once
+// Reference-map advection, eq. (3.3): d xi/dt + H u . grad xi = 0 with H = 1 only inside
+// the solid (phi < 0) and 0 elsewhere, so xi is transported only where it is valid and
+// the extrapolated band is left for the extrapolation to overwrite.
+//
+// u . grad xi is written with the exactly divergence-free face velocities of the
+// projection: u . grad q = div(u_f q) - q div(u_f) with central face values gives
+//   [uf_{i+1/2} (q_{i+1} - q_i) + uf_{i-1/2} (q_i - q_{i-1})] / (2 dx) + (same in y),
+// a second-order central scheme that is exact for affine q when u_f is the exact velocity
+// of a rigid motion (the Zalesak test measures only the time-integration error).
+#include "solver/field.hpp"
+
+namespace refmap {
+
+/// k = -H u.grad(xi) for both components on a window (local (i, j) = global (i0+i, j0+j));
+/// uf, vf are the global face-velocity views; one ghost layer of xi is read.
+void reference_map_rhs(CView xi_x, CView xi_y, CView phi, CView uf, CView vf, int ni, int nj,
+                       int i0, int j0, double dx, View kx, View ky);
+
+}  // namespace refmap

@@ -1,0 +1,87 @@
+#include "solver/csv.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
+namespace refmap {
+
+CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> header, const std::string& comment_header)
+    : path_(path), header_(std::move(header)) {
+  if (header_.empty()) throw std::invalid_argument("CsvWriter: " + path + ": empty header");
+  errno = 0;
+  file_.reset(std::fopen(path.c_str(), "w"));
+  if (!file_)
+    throw std::runtime_error("cannot open " + path + " for writing: " + (errno ? std::strerror(errno) : "open failed"));
+  if (!comment_header.empty()) {
+    std::size_t start = 0;
+    while (start <= comment_header.size()) {
+      std::size_t nl = comment_header.find('\n', start);
+      if (nl == std::string::npos) nl = comment_header.size();
+      const std::string line = comment_header.substr(start, nl - start);
+      if (!(nl == comment_header.size() && line.empty())) {  // no empty line for a trailing '\n'
+        buf_ += (!line.empty() && line[0] == '#') ? line : (line.empty() ? "#" : "# " + line);
+        buf_ += '\n';
+      }
+      start = nl + 1;
+    }
+  }
+  for (std::size_t i = 0; i < header_.size(); ++i) {
+    if (i) buf_ += ',';
+    buf_ += header_[i];
+  }
+  buf_ += '\n';
+  flush();
+}
+
+CsvWriter::~CsvWriter() {
+  try {
+    flush();
+  } catch (...) {
+  }
+}
+
+CsvWriter::CsvWriter(CsvWriter&&) noexcept = default;
+CsvWriter& CsvWriter::operator=(CsvWriter&& o) noexcept {
+  if (this != &o) {
+    try { flush(); } catch (...) {}
+    path_ = std::move(o.path_);
+    header_ = std::move(o.header_);
+    file_ = std::move(o.file_);
+    buf_ = std::move(o.buf_);
+    last_flush_ = o.last_flush_;
+    rows_ = o.rows_;
+  }
+  return *this;
+}
+
+void CsvWriter::row(const std::vector<double>& values) {
+  if (values.size() != header_.size())
+    throw std::invalid_argument("CsvWriter: " + path_ + ": row has " + std::to_string(values.size()) +
+                                " values, the header has " + std::to_string(header_.size()) + " columns");
+  char num[40];
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (i) buf_ += ',';
+    const int n = std::snprintf(num, sizeof num, "%.10g", values[i]);
+    buf_.append(num, std::size_t(n));
+  }
+  buf_ += '\n';
+  ++rows_;
+  if (buf_.size() > (1u << 20) ||
+      std::chrono::steady_clock::now() - last_flush_ >= std::chrono::seconds(1))
+    flush();
+}
+
+void CsvWriter::flush() {
+  if (!file_) return;
+  last_flush_ = std::chrono::steady_clock::now();
+  if (!buf_.empty()) {
+    const std::size_t n = std::fwrite(buf_.data(), 1, buf_.size(), file_.get());
+    const bool ok = n == buf_.size();
+    buf_.clear();
+    if (!ok) throw std::runtime_error("write error on " + path_);
+  }
+  if (std::fflush(file_.get()) != 0) throw std::runtime_error("write error on " + path_);
+}
+
+}  // namespace refmap

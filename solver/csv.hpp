@@ -1,0 +1,43 @@
+#pragma once
+// A buffered CSV writer for time series (diagnostics.csv, ...).
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace refmap {
+
+class CsvWriter {
+ public:
+  /// Creates (truncates) `path` and writes the optional comment header (every line
+  /// prefixed with "# " unless it already starts with '#'; multi-line OK) and the column
+  /// header, and flushes them. Throws std::runtime_error if the file cannot be opened.
+  CsvWriter(const std::string& path, std::vector<std::string> header, const std::string& comment_header = "");
+  ~CsvWriter();  ///< flushes
+  CsvWriter(CsvWriter&&) noexcept;
+  CsvWriter& operator=(CsvWriter&&) noexcept;
+  CsvWriter(const CsvWriter&) = delete;
+  CsvWriter& operator=(const CsvWriter&) = delete;
+
+  /// One row, numbers as %.10g. Throws std::invalid_argument if values.size() differs
+  /// from the number of columns. Rows are buffered and reach the file at least once a
+  /// second of wall time (checked on each row), on flush() and on destruction.
+  void row(const std::vector<double>& values);
+  void flush();  ///< throws std::runtime_error on a write error
+
+  const std::string& path() const { return path_; }
+  std::size_t columns() const { return header_.size(); }
+  long rows() const { return rows_; }
+
+ private:
+  struct Closer { void operator()(std::FILE* f) const { if (f) std::fclose(f); } };
+  std::string path_;
+  std::vector<std::string> header_;
+  std::unique_ptr<std::FILE, Closer> file_;
+  std::string buf_;
+  std::chrono::steady_clock::time_point last_flush_;
+  long rows_ = 0;
+};
+
+}  // namespace refmap

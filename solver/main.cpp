@@ -1,0 +1,202 @@
+// refmap command line:
+//
+//   refmap run SCENE.toml [--out DIR] [--threads N] [--set key=value ...] [--quiet]
+//   refmap --help | refmap run --help | refmap --version
+//
+// Exit codes: 0 success, 1 unexpected error, 2 bad command line or scene file (nothing is
+// written), 3 the simulation failed (non-finite fields, divergence blow-up).
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "solver/config.hpp"
+#include "solver/scene.hpp"
+#include "solver/simulation.hpp"
+
+#ifndef REFMAP_VERSION
+#define REFMAP_VERSION "0.1"
+#endif
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kExitError = 1, kExitUsage = 2, kExitFailed = 3;
+
+int error(const std::string& msg, int code) {
+  std::cerr << "refmap: error: " << msg << std::endl;
+  return code;
+}
+
+/// Quotes an argument for a POSIX shell if it needs it.
+std::string shell_quote(const std::string& s) {
+  bool plain = !s.empty();
+  for (char c : s)
+    plain = plain && (std::isalnum((unsigned char)c) || std::string_view("_-+=.,/:@%").find(c) != std::string_view::npos);
+  if (plain) return s;
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+/// DIR/scene.toml: the input file verbatim under a comment header that records the
+/// --set overrides, so `refmap run DIR/scene.toml --set ...` reproduces the run.
+void write_scene_copy(const fs::path& dir, const std::string& scene_path, const std::vector<std::string>& sets) {
+  std::ifstream in(scene_path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::string header = "# Scene of this run, copied by refmap " REFMAP_VERSION " from " +
+                       fs::absolute(scene_path).lexically_normal().string() + "\n";
+  if (sets.empty()) {
+    header += "# --set overrides: none\n";
+  } else {
+    header += "# --set overrides (NOT applied below; pass them again to reproduce):";
+    for (const auto& s : sets) header += " --set " + shell_quote(s);
+    header += "\n";
+  }
+  const fs::path out = dir / "scene.toml";
+  const std::string tmp = out.string() + ".tmp";
+  {
+    std::ofstream o(tmp, std::ios::binary | std::ios::trunc);
+    if (!o) throw std::runtime_error("cannot write " + tmp);
+    o << header << text.str();
+    if (!text.str().empty() && text.str().back() != '\n') o << '\n';
+    if (!o) throw std::runtime_error("cannot write " + tmp);
+  }
+  fs::rename(tmp, out);
+}
+
+void print_outputs(const fs::path& dir) {
+  std::printf("output:      %s\n", dir.string().c_str());
+  std::vector<fs::path> pvd;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec))
+    if (e.path().extension() == ".pvd") pvd.push_back(e.path());
+  std::sort(pvd.begin(), pvd.end());
+  for (const auto& p : pvd) std::printf("frames:      %s\n", p.string().c_str());
+  const fs::path diag = dir / "diagnostics.csv";
+  if (fs::exists(diag, ec)) std::printf("diagnostics: %s\n", diag.string().c_str());
+  std::vector<fs::path> probes;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string f = e.path().filename().string();
+    if (f.rfind("probe_", 0) == 0 && e.path().extension() == ".csv") probes.push_back(e.path());
+  }
+  std::sort(probes.begin(), probes.end());
+  for (const auto& p : probes) std::printf("probe:       %s\n", p.string().c_str());
+}
+
+int cmd_run(const std::string& scene, std::string out, int threads, bool threads_given,
+            const std::vector<std::string>& sets, bool quiet) {
+  if (threads_given && threads < 1) return error("--threads must be >= 1, got " + std::to_string(threads), kExitUsage);
+
+  refmap::Config cfg;
+  try {
+    cfg = refmap::load_scene(scene, sets);
+  } catch (const refmap::SceneError& e) {
+    return error(e.what(), kExitUsage);
+  }
+
+#ifdef _OPENMP
+  if (threads_given) omp_set_num_threads(threads);
+  const int nthreads = omp_get_max_threads();
+#else
+  const int nthreads = 1;
+#endif
+
+  if (out.empty()) out = (fs::path("out") / cfg.name).string();
+  fs::create_directories(out);
+  const fs::path dir = fs::absolute(out).lexically_normal();
+  write_scene_copy(dir, scene, sets);
+
+  if (!quiet) {
+    std::printf("refmap %s: scene '%s' (%s), %d x %d cells, dx = %.6g, t = %.6g .. %.6g, %d thread%s\n", REFMAP_VERSION,
+                cfg.name.c_str(), scene.c_str(), cfg.grid.nx, cfg.grid.ny, cfg.grid.dx, cfg.t_start, cfg.t_end,
+                nthreads, nthreads == 1 ? "" : "s");
+    std::fflush(stdout);
+  }
+
+  refmap::Simulation sim(cfg);
+  refmap::RunOptions ro;
+  ro.out_dir = dir.string();
+  ro.progress = !quiet;
+  ro.quiet = quiet;
+  const refmap::RunSummary s = sim.run(ro);
+
+  if (s.failed) {
+    std::fflush(stdout);
+    std::cerr << "refmap: error: simulation failed after " << s.steps << " steps at t = " << s.t_end << ": "
+              << s.failure << "\n";
+    std::cerr << "refmap: partial output in " << dir.string() << std::endl;
+    return kExitFailed;
+  }
+  if (!quiet) {
+    std::printf("\nfinished: %ld steps, simulated time %.10g, wall %.3f s%s\n", s.steps, s.t_end, s.wall_s,
+                s.steady ? " (steady state reached)" : "");
+    print_outputs(dir);
+    std::printf("\n");
+    std::ostringstream table;
+    sim.timers().report(table, s.wall_s);
+    std::fputs(table.str().c_str(), stdout);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"refmap " REFMAP_VERSION
+               ": incompressible flow with soft solids on one Cartesian grid (reference map technique)",
+               "refmap"};
+  app.set_version_flag("--version", std::string("refmap ") + REFMAP_VERSION);
+  app.footer("Run `refmap run --help` for the options of a run; scenes/README.md documents the scene file.");
+
+  std::string scene, out;
+  int threads = 0;
+  std::vector<std::string> sets;
+  bool quiet = false;
+  CLI::App* run = app.add_subcommand("run", "run a simulation from a scene file");
+  run->footer("Writes DIR/scene.toml (the scene, for reproducing the run), VTK frames with a .pvd series,\n"
+              "diagnostics.csv and probe CSVs. Exit codes: 0 ok, 1 unexpected error, 2 bad command line or\n"
+              "scene file (nothing written), 3 the simulation failed. Scene keys: scenes/README.md.");
+  run->add_option("scene", scene, "scene file (TOML)")->required()->type_name("SCENE.toml");
+  run->add_option("-o,--out", out, "output directory (default: out/<scene name>)")->type_name("DIR");
+  CLI::Option* threads_opt =
+      run->add_option("-j,--threads", threads, "number of OpenMP threads (default: OMP_NUM_THREADS or all cores)")
+          ->type_name("N");
+  run->add_option("-s,--set", sets,
+                  "override a scene value, e.g. --set fluid.viscosity=0.001 --set solver.advection=superbee "
+                  "(the value is TOML; a bare word is a string); repeatable")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  run->add_flag("-q,--quiet", quiet, "no progress display and no summary (errors are still printed)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : kExitUsage;
+  }
+
+  try {
+    if (run->parsed()) return cmd_run(scene, out, threads, threads_opt->count() > 0, sets, quiet);
+    std::cerr << app.help();
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    return error(e.what(), kExitError);
+  } catch (...) {
+    return error("unknown exception", kExitError);
+  }
+}

@@ -1,0 +1,153 @@
+// Jacobi-preconditioned CG and multigrid-preconditioned CG; see poisson_cg.hpp.
+#include "solver/poisson_cg.hpp"
+
+#include <omp.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace refmap {
+
+namespace {
+void ensure(Field& f, int nx, int ny) {
+  if (f.nx() != nx || f.ny() != ny || f.ng() < 1) f.resize(nx, ny, 1);
+}
+}  // namespace
+
+// ------------------------------------------------------------------------------------------
+CGSolver::CGSolver(const PoissonOptions& opt) : opt_(opt) {}
+
+mg::Stencil CGSolver::stencil() const {
+  mg::Stencil s;
+  s.nx = op_.grid.nx;
+  s.ny = op_.grid.ny;
+  s.px = op_.periodic_x;
+  s.py = op_.periodic_y;
+  s.tx = tx_.cview();
+  s.ty = ty_.cview();
+  s.invd = invd_.cview();
+  s.threads = threads_;
+  return s;
+}
+
+void CGSolver::setup(const PoissonOperator& op) {
+  validate_poisson_operator(op);
+  op_ = op;
+  build_fine_operator(op, tx_, ty_, invd_);
+  const int nx = op.grid.nx, ny = op.grid.ny;
+  ensure(f_, nx, ny);
+  ensure(r_, nx, ny);
+  ensure(p_, nx, ny);
+  ensure(q_, nx, ny);
+  ready_ = true;
+}
+
+SolveStats CGSolver::solve(const Field& rhs, Field& x) {
+  if (!ready_) throw std::logic_error("cg: solve() before setup()");
+  threads_ = op_.grid.cells() >= kMultigridMinParallelCells ? omp_get_max_threads() : 1;
+  const mg::Stencil s = stencil();
+  SolveStats st;
+  const double bnorm = detail::prepare_rhs(op_, s, rhs, x, f_.view());
+  View xv = x.view();
+  if (bnorm == 0.0) {
+    mg::fill(s, xv, 0.0);
+    mg::fill_ghosts(s, xv);
+    st.converged = true;
+    if (opt_.record_history) st.history.push_back(0.0);
+    return st;
+  }
+  mg::fill_ghosts(s, xv);
+  double rel = std::sqrt(mg::residual(s, xv, f_.cview(), r_.view())) / bnorm;
+  if (opt_.record_history) st.history.push_back(rel);
+  int it = 0;
+  if (rel > opt_.tol) {
+    double rz = mg::jacobi_precondition(s, r_.cview(), p_.view());  // p = z = D^{-1} r
+    mg::fill_ghosts(s, p_.view());
+    while (it < opt_.max_iter) {
+      const double pq = mg::apply_dot(s, p_.cview(), q_.view());
+      if (!(pq < 0.0)) break;  // breakdown (p in the null space) or NaN
+      const double alpha = rz / pq;
+      double rz_new = 0.0;
+      const double rr = mg::cg_update_jacobi(s, alpha, xv, p_.cview(), r_.view(), q_.cview(), rz_new);
+      ++it;
+      rel = std::sqrt(rr) / bnorm;
+      if (opt_.record_history) st.history.push_back(rel);
+      if (rel <= opt_.tol || !std::isfinite(rel)) break;
+      const double beta = rz_new / rz;
+      rz = rz_new;
+      mg::cg_direction_jacobi(s, r_.cview(), beta, p_.view());
+    }
+  }
+  detail::remove_mean(s, xv);
+  st.iterations = it;
+  st.rel_residual = rel;
+  st.converged = rel <= opt_.tol;
+  return st;
+}
+
+// ------------------------------------------------------------------------------------------
+MGPCGSolver::MGPCGSolver(const PoissonOptions& opt) : opt_(opt) {}
+
+std::string MGPCGSolver::name() const {
+  return "mgpcg(V-cycle, " + opt_.smoother + " " + std::to_string(opt_.pre_smooth) + "/" +
+         std::to_string(opt_.post_smooth) + ")";
+}
+
+void MGPCGSolver::setup(const PoissonOperator& op) {
+  mg_.setup(op, opt_, /*symmetric=*/true);
+  op_ = op;
+  const int nx = op.grid.nx, ny = op.grid.ny;
+  ensure(f_, nx, ny);
+  ensure(r_, nx, ny);
+  ensure(p_, nx, ny);
+  ensure(q_, nx, ny);
+  ensure(z_, nx, ny);
+  ready_ = true;
+}
+
+SolveStats MGPCGSolver::solve(const Field& rhs, Field& x) {
+  if (!ready_) throw std::logic_error("mgpcg: solve() before setup()");
+  mg_.update_threads();
+  const mg::Stencil s = mg_.stencil(0);
+  SolveStats st;
+  const double bnorm = detail::prepare_rhs(op_, s, rhs, x, f_.view());
+  View xv = x.view();
+  if (bnorm == 0.0) {
+    mg::fill(s, xv, 0.0);
+    mg::fill_ghosts(s, xv);
+    st.converged = true;
+    if (opt_.record_history) st.history.push_back(0.0);
+    return st;
+  }
+  mg::fill_ghosts(s, xv);
+  double rel = std::sqrt(mg::residual(s, xv, f_.cview(), r_.view())) / bnorm;
+  if (opt_.record_history) st.history.push_back(rel);
+  int it = 0;
+  if (rel > opt_.tol) {
+    mg_.precondition(r_.cview(), z_.view());
+    double rz = mg::dot(s, r_.cview(), z_.cview());
+    mg::cg_direction(s, z_.cview(), 0.0, p_.view());
+    while (it < opt_.max_iter) {
+      const double pq = mg::apply_dot(s, p_.cview(), q_.view());
+      if (!(pq < 0.0)) break;
+      const double alpha = rz / pq;
+      const double rr = mg::cg_update(s, alpha, xv, p_.cview(), r_.view(), q_.cview());
+      ++it;
+      rel = std::sqrt(rr) / bnorm;
+      if (opt_.record_history) st.history.push_back(rel);
+      if (rel <= opt_.tol || !std::isfinite(rel)) break;
+      mg_.precondition(r_.cview(), z_.view());
+      const double rz_new = mg::dot(s, r_.cview(), z_.cview());
+      const double beta = rz_new / rz;
+      rz = rz_new;
+      mg::cg_direction(s, z_.cview(), beta, p_.view());
+    }
+  }
+  detail::remove_mean(s, xv);
+  st.iterations = it;
+  st.rel_residual = rel;
+  st.converged = rel <= opt_.tol;
+  return st;
+}
+
+}  // namespace refmap

@@ -1,0 +1,553 @@
+// Geometric multigrid hierarchy and the "multigrid" Poisson solver; see poisson_multigrid.hpp.
+#include "solver/poisson_multigrid.hpp"
+
+#include <omp.h>
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+namespace refmap {
+
+namespace {
+
+void check_field(const Field* f, int nx, int ny, const char* what) {
+  if (!f) throw std::invalid_argument(std::string("Poisson operator: ") + what + " is null");
+  if (f->nx() != nx || f->ny() != ny)
+    throw std::invalid_argument(std::string("Poisson operator: ") + what + " has size " +
+                                std::to_string(f->nx()) + " x " + std::to_string(f->ny()) +
+                                ", expected " + std::to_string(nx) + " x " + std::to_string(ny));
+}
+
+/// Face distance between the centres on either side of face e of a 1-D partition.
+inline double face_dist(const std::vector<double>& c, double length, int e) {
+  const int n = int(c.size());
+  if (e > 0 && e < n) return c[e] - c[e - 1];
+  return c[0] + length - c[n - 1];  // periodic wrap face (0 == n)
+}
+
+void compute_invd(const mg::Stencil& s, Field& invd) {
+  const int nx = s.nx, ny = s.ny;
+#pragma omp parallel for schedule(static) if (std::size_t(nx) * ny >= kMultigridMinParallelCells)
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const double d = s.tx(i, j) + s.tx(i + 1, j) + s.ty(i, j) + s.ty(i, j + 1);
+      invd(i, j) = d > 0 ? 1.0 / d : 0.0;
+    }
+}
+
+/// Path from coarse centre I-1 to coarse centre I (coarse face I, I in [0, nc]) through the
+/// fine links: (fine face e, length fraction of link e lying between the two centres).
+/// Wall faces (I = 0 and nc when not periodic) get an empty path.
+std::vector<std::vector<std::pair<int, double>>> coarse_face_paths(const std::vector<double>& cf,
+                                                                   const std::vector<double>& cc,
+                                                                   double length, bool periodic) {
+  const int nf = int(cf.size()), nc = int(cc.size());
+  std::vector<std::vector<std::pair<int, double>>> paths(nc + 1);
+  auto start = [&](int I) { return 2 * I; };                 // first fine cell of coarse I
+  auto stop = [&](int I) { return I == nc - 1 ? nf : 2 * I + 2; };  // one past its last
+  for (int I = 0; I <= nc; ++I) {
+    if (I == 0 || I == nc) {
+      if (!periodic || I == nc) continue;
+    }
+    // sequence of fine cells (index, position) from the left coarse cell to the right one
+    std::vector<std::pair<int, double>> seq;
+    double cl, cr;
+    if (I == 0) {
+      for (int k = start(nc - 1); k < nf; ++k) seq.push_back({k, cf[k] - length});
+      for (int k = 0; k < stop(0); ++k) seq.push_back({k, cf[k]});
+      cl = cc[nc - 1] - length;
+      cr = cc[0];
+    } else {
+      for (int k = start(I - 1); k < stop(I); ++k) seq.push_back({k, cf[k]});
+      cl = cc[I - 1];
+      cr = cc[I];
+    }
+    for (std::size_t m = 0; m + 1 < seq.size(); ++m) {
+      const double a = seq[m].second, b = seq[m + 1].second;
+      const double len = std::min(b, cr) - std::max(a, cl);
+      if (len <= 1e-12 * (b - a)) continue;
+      paths[I].push_back({seq[m + 1].first, len / (b - a)});
+    }
+  }
+  if (periodic) paths[nc] = paths[0];
+  return paths;
+}
+
+/// Rediscretised coarse coefficients (experiment modes via MG_CMODE).
+void coarsen_operator(const MultigridHierarchy::Level& F, MultigridHierarchy::Level& C) {
+  const bool par = std::size_t(C.nx) * C.ny >= kMultigridMinParallelCells;
+  static const int mode = std::getenv("MG_CMODE") ? std::atoi(std::getenv("MG_CMODE")) : 0;
+  const auto px = coarse_face_paths(F.cx, C.cx, F.lx, C.px);
+  const auto py = coarse_face_paths(F.cy, C.cy, F.ly, C.py);
+  // normal direction: conductance of one fine strip between the two coarse centres
+  auto strip = [&](const std::vector<std::pair<int, double>>& path, auto&& T, int eface, double dscale) {
+    if (mode == 0 || mode == 3) return T(eface) * dscale;
+    double a = 0.0, ws = 0.0;
+    for (const auto& [e, w] : path) { a += w * T(e); ws += w; }
+    if (mode == 4) { double r = 0; for (const auto& [e, w] : path) { if (!(T(e) > 0)) return 0.0; r += w / T(e);} return r > 0 ? 1.0 / r : 0.0; }
+    return ws > 0 ? a / (ws * ws) : 0.0;
+  };
+  constexpr int K = mg::Transfer1D::K;
+#pragma omp parallel for schedule(static) if (par)
+  for (int J = 0; J < C.ny; ++J) {
+    const int jlo = 2 * J, jhi = (J == C.ny - 1) ? F.ny : 2 * J + 2;
+    for (int I = 0; I <= C.nx; ++I) {
+      if (!C.px && (I == 0 || I == C.nx)) {
+        C.tx(I, J) = 0.0;
+        continue;
+      }
+      const int e = (I == C.nx) ? F.nx : 2 * I;
+      const double dscale = face_dist(F.cx, F.lx, e) / face_dist(C.cx, C.lx, I);
+      double s = 0.0;
+      if (mode >= 2 && mode <= 3) {
+        for (int k = 0; k < K; ++k) {
+          const double w = F.try_.rw[J * K + k];
+          if (w == 0) continue;
+          const int j = F.try_.ri[J * K + k];
+          s += w * strip(px[I], [&](int ee) { return F.tx(ee, j); }, e, dscale);
+        }
+      } else {
+        for (int j = jlo; j < jhi; ++j) s += strip(px[I], [&](int ee) { return F.tx(ee, j); }, e, dscale);
+      }
+      C.tx(I, J) = s;
+    }
+  }
+#pragma omp parallel for schedule(static) if (par)
+  for (int J = 0; J <= C.ny; ++J) {
+    if (!C.py && (J == 0 || J == C.ny)) {
+      for (int I = 0; I < C.nx; ++I) C.ty(I, J) = 0.0;
+      continue;
+    }
+    const int e = (J == C.ny) ? F.ny : 2 * J;
+    const double dscale = face_dist(F.cy, F.ly, e) / face_dist(C.cy, C.ly, J);
+    for (int I = 0; I < C.nx; ++I) {
+      const int ilo = 2 * I, ihi = (I == C.nx - 1) ? F.nx : 2 * I + 2;
+      double s = 0.0;
+      if (mode >= 2 && mode <= 3) {
+        for (int k = 0; k < K; ++k) {
+          const double w = F.trx.rw[I * K + k];
+          if (w == 0) continue;
+          const int i = F.trx.ri[I * K + k];
+          s += w * strip(py[J], [&](int ee) { return F.ty(i, ee); }, e, dscale);
+        }
+      } else {
+        for (int i = ilo; i < ihi; ++i) s += strip(py[J], [&](int ee) { return F.ty(i, ee); }, e, dscale);
+      }
+      C.ty(I, J) = s;
+    }
+  }
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------
+void validate_poisson_operator(const PoissonOperator& op) {
+  const int nx = op.grid.nx, ny = op.grid.ny;
+  if (nx < 1 || ny < 1)
+    throw std::invalid_argument("Poisson operator: grid has " + std::to_string(nx) + " x " +
+                                std::to_string(ny) + " cells");
+  if (!(op.grid.dx > 0)) throw std::invalid_argument("Poisson operator: dx must be > 0");
+  check_field(op.beta_x, nx + 1, ny, "beta_x");
+  check_field(op.beta_y, nx, ny + 1, "beta_y");
+}
+
+void build_fine_operator(const PoissonOperator& op, Field& tx, Field& ty, Field& invd) {
+  const int nx = op.grid.nx, ny = op.grid.ny;
+  if (tx.nx() != nx + 1 || tx.ny() != ny || tx.ng() < 1) tx.resize(nx + 1, ny, 1);
+  if (ty.nx() != nx || ty.ny() != ny + 1 || ty.ng() < 1) ty.resize(nx, ny + 1, 1);
+  if (invd.nx() != nx || invd.ny() != ny || invd.ng() < 1) invd.resize(nx, ny, 1);
+  const Field& bx = *op.beta_x;
+  const Field& by = *op.beta_y;
+  const bool px = op.periodic_x, py = op.periodic_y;
+  const bool par = op.grid.cells() >= kMultigridMinParallelCells;
+#pragma omp parallel for schedule(static) if (par)
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 1; i < nx; ++i) tx(i, j) = bx(i, j);
+    const double wrap = px ? 0.5 * (bx(0, j) + bx(nx, j)) : 0.0;
+    tx(0, j) = wrap;
+    tx(nx, j) = wrap;
+  }
+#pragma omp parallel for schedule(static) if (par)
+  for (int j = 1; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) ty(i, j) = by(i, j);
+  for (int i = 0; i < nx; ++i) {
+    const double wrap = py ? 0.5 * (by(i, 0) + by(i, ny)) : 0.0;
+    ty(i, 0) = wrap;
+    ty(i, ny) = wrap;
+  }
+  mg::Stencil s;
+  s.nx = nx;
+  s.ny = ny;
+  s.tx = tx.cview();
+  s.ty = ty.cview();
+  compute_invd(s, invd);
+}
+
+// ------------------------------------------------------------------------------------------
+struct MultigridHierarchy::Coarse {
+  int nx = 0, ny = 0, n = 0;
+  bool dense = true;
+  std::vector<double> chol;  ///< dense: lower Cholesky factor of -L + alpha 1 1^T, row-major
+  std::vector<double> b;
+  Eigen::SparseMatrix<double> A;  ///< sparse: -L with cell 0 pinned
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt;
+  Eigen::VectorXd vb, ve;
+};
+
+MultigridHierarchy::MultigridHierarchy() : coarse_(std::make_unique<Coarse>()) {}
+MultigridHierarchy::~MultigridHierarchy() = default;
+
+mg::Stencil MultigridHierarchy::stencil(int l) const {
+  const Level& L = levels_[l];
+  mg::Stencil s;
+  s.nx = L.nx;
+  s.ny = L.ny;
+  s.px = L.px;
+  s.py = L.py;
+  s.tx = L.tx.cview();
+  s.ty = L.ty.cview();
+  s.invd = L.invd.cview();
+  s.threads = L.threads;
+  return s;
+}
+
+void MultigridHierarchy::update_threads() {
+  const int mt = std::max(1, std::min(omp_get_max_threads(), scratch_.nthreads));
+  for (Level& L : levels_)
+    L.threads = std::size_t(L.nx) * std::size_t(L.ny) >= kMultigridMinParallelCells ? mt : 1;
+}
+
+void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& opt,
+                               bool symmetric) {
+  validate_poisson_operator(op);
+  if (opt.smoother != "rbgs" && opt.smoother != "jacobi")
+    throw std::invalid_argument("multigrid: unknown smoother '" + opt.smoother +
+                                "' (expected \"rbgs\" or \"jacobi\")");
+  if (opt.pre_smooth < 0 || opt.post_smooth < 0 || opt.pre_smooth + opt.post_smooth < 1)
+    throw std::invalid_argument("multigrid: pre_smooth/post_smooth must be >= 0 and not both 0");
+  if (opt.coarse_cells < 1) throw std::invalid_argument("multigrid: coarse_cells must be >= 1");
+  jacobi_ = opt.smoother == "jacobi";
+  pre_ = opt.pre_smooth;
+  post_ = opt.post_smooth;
+  omega_ = opt.jacobi_omega;
+  rb_omega_ = std::getenv("MG_RBW") ? std::atof(std::getenv("MG_RBW")) : 1.0;
+  symmetric_ = symmetric;
+
+  const int nx = op.grid.nx, ny = op.grid.ny;
+  const bool px = op.periodic_x, py = op.periodic_y;
+  const bool reuse = !levels_.empty() && levels_[0].nx == nx && levels_[0].ny == ny &&
+                     levels_[0].px == px && levels_[0].py == py &&
+                     coarse_cells_ == opt.coarse_cells &&
+                     scratch_.nthreads >= omp_get_max_threads();
+  coarse_cells_ = opt.coarse_cells;
+  if (!reuse) {
+    levels_.clear();
+    levels_.reserve(32);
+    Level L0;
+    L0.nx = nx;
+    L0.ny = ny;
+    L0.px = px;
+    L0.py = py;
+    L0.cx.resize(nx);
+    L0.wx.assign(nx, 1.0);
+    L0.cy.resize(ny);
+    L0.wy.assign(ny, 1.0);
+    for (int i = 0; i < nx; ++i) L0.cx[i] = i + 0.5;
+    for (int j = 0; j < ny; ++j) L0.cy[j] = j + 0.5;
+    L0.lx = nx;
+    L0.ly = ny;
+    levels_.push_back(std::move(L0));
+    for (;;) {
+      Level& F = levels_.back();
+      if (std::size_t(F.nx) * F.ny <= std::size_t(coarse_cells_) || F.nx < 4 || F.ny < 4) break;
+      Level C;
+      C.px = px;
+      C.py = py;
+      C.lx = F.lx;
+      C.ly = F.ly;
+      F.trx = mg::build_transfer(F.cx, F.wx, F.lx, px, C.cx, C.wx);
+      F.try_ = mg::build_transfer(F.cy, F.wy, F.ly, py, C.cy, C.wy);
+      C.nx = int(C.cx.size());
+      C.ny = int(C.cy.size());
+      C.tx.resize(C.nx + 1, C.ny, 1);
+      C.ty.resize(C.nx, C.ny + 1, 1);
+      C.invd.resize(C.nx, C.ny, 1);
+      C.x.resize(C.nx, C.ny, 1);
+      C.f.resize(C.nx, C.ny, 1);
+      levels_.push_back(std::move(C));
+    }
+    std::size_t per = 8;
+    for (std::size_t l = 0; l < levels_.size(); ++l) {
+      const int nxc = l + 1 < levels_.size() ? levels_[l + 1].nx : levels_[l].nx;
+      per = std::max(per, mg::scratch_per_thread(levels_[l].nx, nxc));
+    }
+    const int nt = std::max(1, omp_get_max_threads());
+    scratch_store_.assign(per * std::size_t(nt), 0.0);
+    scratch_.p = scratch_store_.data();
+    scratch_.per_thread = per;
+    scratch_.nthreads = nt;
+  }
+  build_fine_operator(op, levels_[0].tx, levels_[0].ty, levels_[0].invd);
+  for (std::size_t l = 1; l < levels_.size(); ++l) {
+    coarsen_operator(levels_[l - 1], levels_[l]);
+    mg::Stencil s = stencil(int(l));
+    compute_invd(s, levels_[l].invd);
+  }
+  build_coarse_solver();
+  update_threads();
+}
+
+void MultigridHierarchy::build_coarse_solver() {
+  const Level& L = levels_.back();
+  Coarse& c = *coarse_;
+  const int nx = L.nx, ny = L.ny, n = nx * ny;
+  c.nx = nx;
+  c.ny = ny;
+  c.n = n;
+  c.dense = n <= 1024;
+  c.b.assign(n, 0.0);
+  auto idx = [nx](int i, int j) { return i + nx * j; };
+  // neighbours with coefficient: (k, m, T) for every interior/periodic face once
+  auto for_faces = [&](auto&& fn) {
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        // east face i+1 (wraps when periodic), north face j+1
+        if (i + 1 < nx || L.px) fn(idx(i, j), idx((i + 1) % nx, j), L.tx(i + 1, j));
+        if (j + 1 < ny || L.py) fn(idx(i, j), idx(i, (j + 1) % ny), L.ty(i, j + 1));
+      }
+  };
+  if (c.dense) {
+    std::vector<double>& A = c.chol;
+    A.assign(std::size_t(n) * n, 0.0);
+    for_faces([&](int k, int m, double T) {
+      if (k == m) return;  // a face from a cell to itself (periodic n == 1) does nothing
+      A[std::size_t(k) * n + k] += T;
+      A[std::size_t(m) * n + m] += T;
+      A[std::size_t(k) * n + m] -= T;
+      A[std::size_t(m) * n + k] -= T;
+    });
+    double tr = 0.0;
+    for (int k = 0; k < n; ++k) tr += A[std::size_t(k) * n + k];
+    const double alpha = (tr > 0 ? tr / n : 1.0) / n;
+    for (auto& a : A) a += alpha;
+    // in-place Cholesky (lower triangle)
+    for (int k = 0; k < n; ++k) {
+      double d = A[std::size_t(k) * n + k];
+      for (int p = 0; p < k; ++p) d -= A[std::size_t(k) * n + p] * A[std::size_t(k) * n + p];
+      if (!(d > 0))
+        throw std::runtime_error("multigrid: coarse matrix is not positive definite "
+                                 "(disconnected cells or negative beta?)");
+      d = std::sqrt(d);
+      A[std::size_t(k) * n + k] = d;
+      for (int m = k + 1; m < n; ++m) {
+        double v = A[std::size_t(m) * n + k];
+        for (int p = 0; p < k; ++p) v -= A[std::size_t(m) * n + p] * A[std::size_t(k) * n + p];
+        A[std::size_t(m) * n + k] = v / d;
+      }
+    }
+  } else {
+    std::vector<Eigen::Triplet<double>> trip;
+    trip.reserve(std::size_t(n) * 5);
+    for_faces([&](int k, int m, double T) {
+      if (k == m) return;
+      if (k != 0) trip.emplace_back(k, k, T);
+      if (m != 0) trip.emplace_back(m, m, T);
+      if (k != 0 && m != 0) {
+        trip.emplace_back(k, m, -T);
+        trip.emplace_back(m, k, -T);
+      }
+    });
+    trip.emplace_back(0, 0, 1.0);  // pinned cell: x_0 = 0, mean removed afterwards
+    c.A.resize(n, n);
+    c.A.setFromTriplets(trip.begin(), trip.end());
+    c.llt.compute(c.A);
+    if (c.llt.info() != Eigen::Success)
+      throw std::runtime_error("multigrid: sparse Cholesky of the coarse matrix failed");
+    c.vb.resize(n);
+    c.ve.resize(n);
+  }
+}
+
+void MultigridHierarchy::coarse_solve(int l, View x, CView f) {
+  Coarse& c = *coarse_;
+  const int nx = c.nx, ny = c.ny, n = c.n;
+  double mean = 0.0;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) mean += f(i, j);
+  mean /= n;
+  // solve (-L) e = -(f - mean)
+  if (c.dense) {
+    double* b = c.b.data();
+    const double* A = c.chol.data();
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) b[i + nx * j] = mean - f(i, j);
+    for (int k = 0; k < n; ++k) {  // forward: L y = b
+      double v = b[k];
+      const double* row = A + std::size_t(k) * n;
+      for (int p = 0; p < k; ++p) v -= row[p] * b[p];
+      b[k] = v / row[k];
+    }
+    for (int k = n - 1; k >= 0; --k) {  // backward: L^T e = y
+      double v = b[k];
+      for (int m = k + 1; m < n; ++m) v -= A[std::size_t(m) * n + k] * b[m];
+      b[k] = v / A[std::size_t(k) * n + k];
+    }
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) x(i, j) = b[i + nx * j];
+  } else {
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) c.vb[i + nx * j] = mean - f(i, j);
+    c.vb[0] = 0.0;
+    c.ve = c.llt.solve(c.vb);
+    const double em = c.ve.mean();
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) x(i, j) = c.ve[i + nx * j] - em;
+  }
+  mg::fill_ghosts(stencil(l), x);
+}
+
+void MultigridHierarchy::smooth(int l, View x, CView f, int sweeps, bool post) {
+  if (sweeps <= 0) return;
+  const mg::Stencil s = stencil(l);
+  if (jacobi_)
+    mg::smooth_jacobi(s, x, f, sweeps, omega_, scratch_);
+  else
+    mg::smooth_rbgs(s, x, f, sweeps, /*black_first=*/post && symmetric_, rb_omega_);
+}
+
+void MultigridHierarchy::vcycle(int l, View x, CView f) {
+  if (l == num_levels() - 1) {
+    coarse_solve(l, x, f);
+    return;
+  }
+  Level& F = levels_[l];
+  Level& C = levels_[l + 1];
+  const mg::Stencil s = stencil(l);
+  smooth(l, x, f, pre_, false);
+  mg::residual_restrict(s, x, f, F.trx, F.try_, C.f.view(), scratch_);
+  const mg::Stencil sc = stencil(l + 1);
+  mg::fill(sc, C.x.view(), 0.0);
+  mg::fill_ghosts(sc, C.x.view());
+  vcycle(l + 1, C.x.view(), C.f.cview());
+  mg::prolong_add(s, F.trx, F.try_, C.x.cview(), x, scratch_);
+  smooth(l, x, f, post_, true);
+}
+
+void MultigridHierarchy::fcycle(int l, View x, CView f) {
+  if (l == num_levels() - 1) {
+    coarse_solve(l, x, f);
+    return;
+  }
+  Level& F = levels_[l];
+  Level& C = levels_[l + 1];
+  const mg::Stencil s = stencil(l);
+  smooth(l, x, f, pre_, false);
+  mg::residual_restrict(s, x, f, F.trx, F.try_, C.f.view(), scratch_);
+  const mg::Stencil sc = stencil(l + 1);
+  mg::fill(sc, C.x.view(), 0.0);
+  mg::fill_ghosts(sc, C.x.view());
+  fcycle(l + 1, C.x.view(), C.f.cview());
+  vcycle(l + 1, C.x.view(), C.f.cview());
+  mg::prolong_add(s, F.trx, F.try_, C.x.cview(), x, scratch_);
+  smooth(l, x, f, post_, true);
+}
+
+void MultigridHierarchy::cycle(View x, CView f, bool f_cycle) {
+  if (f_cycle)
+    fcycle(0, x, f);
+  else
+    vcycle(0, x, f);
+}
+
+void MultigridHierarchy::precondition(CView r, View z) {
+  const mg::Stencil s = stencil(0);
+  mg::fill(s, z, 0.0);
+  mg::fill_ghosts(s, z);
+  vcycle(0, z, r);
+}
+
+// ------------------------------------------------------------------------------------------
+namespace detail {
+
+double prepare_rhs(const PoissonOperator& op, const mg::Stencil& s, const Field& rhs,
+                   const Field& x, View f) {
+  const int nx = op.grid.nx, ny = op.grid.ny;
+  if (rhs.nx() != nx || rhs.ny() != ny)
+    throw std::invalid_argument("Poisson solve: rhs is " + std::to_string(rhs.nx()) + " x " +
+                                std::to_string(rhs.ny()) + ", grid is " + std::to_string(nx) +
+                                " x " + std::to_string(ny));
+  if (x.nx() != nx || x.ny() != ny)
+    throw std::invalid_argument("Poisson solve: x is " + std::to_string(x.nx()) + " x " +
+                                std::to_string(x.ny()) + ", grid is " + std::to_string(nx) +
+                                " x " + std::to_string(ny));
+  if (x.ng() < 1) throw std::invalid_argument("Poisson solve: x needs at least one ghost layer");
+  const double mean = mg::sum(s, rhs.cview()) / double(op.grid.cells());
+  const double h2 = op.grid.dx * op.grid.dx;
+  return std::sqrt(mg::shift_scale(s, rhs.cview(), mean, h2, f));
+}
+
+void remove_mean(const mg::Stencil& s, View x) {
+  const double mean = mg::sum(s, x) / (double(s.nx) * double(s.ny));
+  mg::add_scalar(s, x, -mean);
+  mg::fill_ghosts(s, x);
+}
+
+}  // namespace detail
+
+// ------------------------------------------------------------------------------------------
+MultigridSolver::MultigridSolver(const PoissonOptions& opt) : opt_(opt) {
+  if (opt.cycle != "V" && opt.cycle != "F")
+    throw std::invalid_argument("multigrid: unknown cycle '" + opt.cycle + "' (expected \"V\" or \"F\")");
+}
+
+void MultigridSolver::setup(const PoissonOperator& op) {
+  mg_.setup(op, opt_);
+  op_ = op;
+  if (f0_.nx() != op.grid.nx || f0_.ny() != op.grid.ny) f0_.resize(op.grid.nx, op.grid.ny, 1);
+  ready_ = true;
+}
+
+std::string MultigridSolver::name() const {
+  return "multigrid(" + opt_.cycle + "-cycle, " + opt_.smoother + " " +
+         std::to_string(opt_.pre_smooth) + "/" + std::to_string(opt_.post_smooth) + ")";
+}
+
+SolveStats MultigridSolver::solve(const Field& rhs, Field& x) {
+  if (!ready_) throw std::logic_error("multigrid: solve() before setup()");
+  mg_.update_threads();
+  const mg::Stencil s = mg_.stencil(0);
+  SolveStats st;
+  const double bnorm = detail::prepare_rhs(op_, s, rhs, x, f0_.view());
+  View xv = x.view();
+  if (bnorm == 0.0) {
+    mg::fill(s, xv, 0.0);
+    mg::fill_ghosts(s, xv);
+    st.converged = true;
+    if (opt_.record_history) st.history.push_back(0.0);
+    return st;
+  }
+  mg::fill_ghosts(s, xv);
+  double rel = std::sqrt(mg::residual(s, xv, f0_.cview(), View{})) / bnorm;
+  if (opt_.record_history) st.history.push_back(rel);
+  const bool f_cycle = opt_.cycle == "F";
+  int it = 0;
+  while (rel > opt_.tol && it < opt_.max_iter) {
+    mg_.cycle(xv, f0_.cview(), f_cycle);
+    ++it;
+    rel = std::sqrt(mg::residual(s, xv, f0_.cview(), View{})) / bnorm;
+    if (opt_.record_history) st.history.push_back(rel);
+    if (!std::isfinite(rel)) break;
+  }
+  detail::remove_mean(s, xv);
+  st.iterations = it;
+  st.rel_residual = rel;
+  st.converged = rel <= opt_.tol;
+  return st;
+}
+
+}  // namespace refmap

@@ -1,0 +1,132 @@
+#pragma once
+// Matrix-free geometric multigrid for the variable-coefficient pressure Poisson problem of
+// solver/poisson.hpp (methods "multigrid" and, as preconditioner, "mgpcg").
+//
+// Discretisation on every level (see kernels/multigrid.hpp): cell-integrated 5-point
+// operator (L x)_P = sum_f T_f (x_nb - x_P); on the finest level T = beta, L = dx^2 A.
+//
+// Coarsening: cell-centred, by two in both directions at once. Coarse cell I covers fine
+// cells 2I and 2I+1; when the fine count n is odd the LAST coarse cell covers the three
+// cells n-3, n-2, n-1 (coarse count floor(n/2)). Cells are therefore not all equal on
+// coarse levels; each level keeps its cell centres and widths (in finest-cell units)
+// and everything below is the exact finite-volume expression on that non-uniform grid.
+// This works the same for walls and periodic directions (a periodic direction of odd
+// length wraps the 3-cell coarse cell onto coarse cell 0). Coarsening stops when
+// nx*ny <= coarse_cells or either direction has fewer than 4 cells.
+//
+// Coarse operator (rediscretisation): the coarse face coefficient is the length-weighted
+// mean of beta over the fine faces that make up the coarse face, T_c = beta_c * len / dist.
+// Prolongation: linear interpolation between cell centres in each direction (bilinear,
+// weights 9/16 3/16 3/16 1/16 on uniform levels), Neumann reflection (constant
+// extrapolation) at walls, wrap in periodic directions. Restriction: exactly P^T applied to
+// the cell-integrated residual (16-point full weighting on uniform levels; area-consistent).
+// Smoothers: red-black Gauss-Seidel (red-black before, black-red after the coarse
+// correction) or weighted Jacobi. Coarsest level: exact solve (dense Cholesky of
+// -L + alpha 1 1^T up to 1024 cells, sparse Cholesky with one pinned cell above), with the
+// right-hand side projected to zero sum and the zero-mean solution returned.
+// With equal pre/post smoothing counts the V-cycle is a symmetric linear operator (used by
+// mgpcg).
+#include <memory>
+#include <vector>
+
+#include "kernels/multigrid.hpp"
+#include "solver/poisson.hpp"
+
+namespace refmap {
+
+/// Checks shared by the solvers: operator fields present and of the right size.
+void validate_poisson_operator(const PoissonOperator& op);
+
+/// Finest-level coefficients: tx = beta_x with wall faces set to 0 and the two periodic
+/// faces set to their mean, ty likewise, invd = 1/sum T (0 if no face). Fields are
+/// (re)sized with one ghost layer.
+void build_fine_operator(const PoissonOperator& op, Field& tx, Field& ty, Field& invd);
+
+/// Cells below which a level runs serially (no OpenMP region).
+inline constexpr std::size_t kMultigridMinParallelCells = 16384;
+
+class MultigridHierarchy {
+ public:
+  struct Level {
+    int nx = 0, ny = 0;
+    bool px = false, py = false;
+    std::vector<double> cx, cy, wx, wy;  ///< cell centres / widths, finest-cell units
+    double lx = 0, ly = 0;               ///< domain length, finest-cell units
+    Field tx, ty, invd;                  ///< operator
+    Field x, f;                          ///< iterate and right-hand side (levels >= 1)
+    mg::Transfer1D trx, try_;            ///< transfer to level + 1 (unused on the last level)
+    int threads = 1;
+  };
+
+  MultigridHierarchy();
+  ~MultigridHierarchy();
+  MultigridHierarchy(const MultigridHierarchy&) = delete;
+  MultigridHierarchy& operator=(const MultigridHierarchy&) = delete;
+
+  /// Honours opt.smoother, pre_smooth, post_smooth, coarse_cells, jacobi_omega, rbgs_omega.
+  /// symmetric: post-smoothing in reversed colour order (black-red) so that the V-cycle is
+  /// a symmetric operator (for mgpcg); otherwise red-black before and after (faster
+  /// convergence: the pre- and post-sweeps then do not repeat a colour back to back).
+  /// Reuses all storage when the grid shape is unchanged since the last call.
+  void setup(const PoissonOperator& op, const PoissonOptions& opt, bool symmetric = false);
+
+  int num_levels() const { return int(levels_.size()); }
+  const Level& level(int l) const { return levels_[l]; }
+  mg::Stencil stencil(int l) const;
+  const mg::Scratch& scratch() const { return scratch_; }
+  /// Re-read omp_get_max_threads() (capped by the scratch allocated in setup).
+  void update_threads();
+
+  /// One cycle on the finest level for L x = f (finest-level, cell-integrated form: f is
+  /// dx^2 * rhs with zero sum); x ghosts must be consistent, and are on return.
+  void cycle(View x, CView f, bool f_cycle);
+  /// z = V-cycle applied to r with zero initial guess (symmetric when pre == post).
+  void precondition(CView r, View z);
+
+ private:
+  void vcycle(int l, View x, CView f);
+  void fcycle(int l, View x, CView f);
+  void smooth(int l, View x, CView f, int sweeps, bool post);
+  void coarse_solve(int l, View x, CView f);
+  void build_coarse_solver();
+
+  std::vector<Level> levels_;
+  std::vector<double, AlignedAllocator<double>> scratch_store_;
+  mg::Scratch scratch_;
+  bool jacobi_ = false;
+  int pre_ = 2, post_ = 2;
+  double omega_ = 0.8;
+  double rb_omega_ = 1.0;
+  bool symmetric_ = false;
+  int coarse_cells_ = 64;
+  struct Coarse;
+  std::unique_ptr<Coarse> coarse_;
+};
+
+/// Method "multigrid": repeated V- or F-cycles until ||r||/||rhs|| <= tol.
+class MultigridSolver final : public PoissonSolver {
+ public:
+  explicit MultigridSolver(const PoissonOptions& opt);
+  void setup(const PoissonOperator& op) override;
+  SolveStats solve(const Field& rhs, Field& x) override;
+  std::string name() const override;
+  const MultigridHierarchy& hierarchy() const { return mg_; }
+
+ private:
+  PoissonOptions opt_;
+  PoissonOperator op_;
+  MultigridHierarchy mg_;
+  Field f0_;  ///< dx^2 (rhs - mean)
+  bool ready_ = false;
+};
+
+namespace detail {
+/// Shared solve prologue: checks x/rhs shapes (x needs >= 1 ghost layer), writes
+/// f = dx^2 (rhs - mean rhs) into f, returns ||f||_2.
+double prepare_rhs(const PoissonOperator& op, const mg::Stencil& s, const Field& rhs,
+                   const Field& x, View f);
+/// Shared epilogue: x -= mean(x), ghosts refreshed.
+void remove_mean(const mg::Stencil& s, View x);
+}  // namespace detail
+
+}  // namespace refmap

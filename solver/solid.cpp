@@ -1,0 +1,332 @@
+#include "solver/solid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "kernels/extrapolate_lsq.hpp"
+#include "kernels/extrapolate_pde.hpp"
+#include "kernels/loop.hpp"
+#include "kernels/reference_map.hpp"
+#include "kernels/solid_stress.hpp"
+
+namespace refmap {
+
+namespace {
+constexpr int kMarginMin = 3;  // cells between the band and the window edge before re-windowing
+constexpr int kMarginNew = 8;  // margin given to a new window (hysteresis)
+}  // namespace
+
+Solid::Solid(const SolidSpec& spec, const SolidsOptions& opt, const Grid& g, bool periodic_x,
+             bool periodic_y)
+    : spec_(spec), opt_(opt), grid_(g), px_(periodic_x), py_(periodic_y) {
+  shape_ = make_shape(spec_.shape);
+  band_ = opt_.band * g.dx;
+  wt_ = opt_.transition * g.dx;
+  initialise();
+}
+
+void Solid::initialise() {
+  const Grid& g = grid_;
+  const BoundingBox bb = shape_->bbox();
+  wrap_x_ = px_ && (bb.xmax - bb.xmin + 2.0 * band_ >= g.lx());
+  wrap_y_ = py_ && (bb.ymax - bb.ymin + 2.0 * band_ >= g.ly());
+  // initial window: the reference bounding box plus band and margin, in cells
+  auto lo = [&](double x, double x0) { return int(std::floor((x - x0) / g.dx)) - kMarginNew; };
+  auto hi = [&](double x, double x0) { return int(std::ceil((x - x0) / g.dx)) + kMarginNew; };
+  int a = lo(bb.xmin - band_, g.x0), b = hi(bb.xmax + band_, g.x0);
+  int c = lo(bb.ymin - band_, g.y0), d = hi(bb.ymax + band_, g.y0);
+  if (wrap_x_) { a = 0; b = g.nx; }
+  if (wrap_y_) { c = 0; d = g.ny; }
+  a = std::max(a, 0); b = std::min(b, g.nx);
+  c = std::max(c, 0); d = std::min(d, g.ny);
+  if (b <= a || d <= c)
+    throw std::invalid_argument("solid '" + spec_.name + "' lies outside the domain");
+  if (!wrap_x_ && px_ && (bb.xmin - band_ < g.x0 || bb.xmax + band_ > g.x0 + g.lx()))
+    throw std::invalid_argument("solid '" + spec_.name +
+                                "' crosses a periodic boundary in x without spanning it "
+                                "(not supported)");
+  if (!wrap_y_ && py_ && (bb.ymin - band_ < g.y0 || bb.ymax + band_ > g.y0 + g.ly()))
+    throw std::invalid_argument("solid '" + spec_.name +
+                                "' crosses a periodic boundary in y without spanning it "
+                                "(not supported)");
+  i0_ = a; j0_ = c; ni_ = b - a; nj_ = d - c;
+  for (Field* f : {&xi_x_, &xi_y_, &phi_, &sxx_, &sxy_, &syy_}) f->resize(ni_, nj_, Grid::ng);
+  known_.resize(ni_, nj_, Grid::ng);
+  for (int j = 0; j < nj_; ++j)
+    for (int i = 0; i < ni_; ++i) {
+      const double x = g.xc(i0_ + i), y = g.yc(j0_ + j);
+      xi_x_(i, j) = x;  // reference configuration: xi = x
+      xi_y_(i, j) = y;
+      phi_(i, j) = std::min(shape_->phi0(x, y), band_);
+    }
+  fill_ghosts(xi_x_, 0);
+  fill_ghosts(xi_y_, 1);
+  if (opt_.reinitialise) {
+    reinitialise_fmm(phi_.view(), ni_, nj_, g.dx, band_, fmm_ws_);
+  }
+}
+
+void Solid::fill_ghosts(Field& f, int component) const {
+  const int ng = f.ng();
+  const bool is_xi_x = component == 0, is_xi_y = component == 1;
+  // x direction
+  for (int j = 0; j < nj_; ++j)
+    for (int k = 1; k <= ng; ++k) {
+      if (wrap_x_) {
+        const double shift = is_xi_x ? grid_.lx() : 0.0;
+        f(-k, j) = f(ni_ - k, j) - shift;
+        f(ni_ - 1 + k, j) = f(k - 1, j) + shift;
+      } else {  // linear extrapolation (exact for the affine reference configuration)
+        f(-k, j) = 2.0 * f(-k + 1, j) - f(-k + 2, j);
+        f(ni_ - 1 + k, j) = 2.0 * f(ni_ - 2 + k, j) - f(ni_ - 3 + k, j);
+      }
+    }
+  for (int k = 1; k <= ng; ++k)
+    for (int i = -ng; i < ni_ + ng; ++i) {
+      if (wrap_y_) {
+        const double shift = is_xi_y ? grid_.ly() : 0.0;
+        f(i, -k) = f(i, nj_ - k) - shift;
+        f(i, nj_ - 1 + k) = f(i, k - 1) + shift;
+      } else {
+        f(i, -k) = 2.0 * f(i, -k + 1) - f(i, -k + 2);
+        f(i, nj_ - 1 + k) = 2.0 * f(i, nj_ - 2 + k) - f(i, nj_ - 3 + k);
+      }
+    }
+}
+
+void Solid::advect(const Field& uf, const Field& vf, double dt) {
+  // RK-4 for eq. (3.3). H (phi < 0) and the face velocities are frozen over the step.
+  // Outside Omega_S, xi is not advected (H = 0) but is the extrapolation of the values
+  // inside: the right-hand side of every stage is evaluated on the extrapolation of that
+  // stage's xi (stages 2-4 re-extrapolate; stage 1 uses the previous step's band). Without
+  // that, cells at the interface would difference stage values against the band's
+  // start-of-step values, an O(dt) inconsistency per step.
+  const int ni = ni_, nj = nj_;
+  if (x0x_.nx() != ni || x0x_.ny() != nj)
+    for (Field* f : {&kx_, &ky_, &k2x_, &k2y_, &x0x_, &x0y_}) f->resize(ni, nj, Grid::ng);
+  x0x_ = xi_x_;
+  x0y_ = xi_y_;
+  auto rhs = [&](Field& kx, Field& ky, bool re_extrapolate) {
+    if (re_extrapolate) extrapolate();
+    reference_map_rhs(xi_x_.view(), xi_y_.view(), phi_.view(), uf.view(), vf.view(), ni, nj, i0_,
+                      j0_, grid_.dx, kx.view(), ky.view());
+  };
+  auto stage = [&](const Field& kx, const Field& ky, double c) {
+    parallel_rows(0, nj, [&](int j) {
+      for (int i = 0; i < ni; ++i) {
+        xi_x_(i, j) = x0x_(i, j) + c * kx(i, j);
+        xi_y_(i, j) = x0y_(i, j) + c * ky(i, j);
+      }
+    });
+  };
+  auto accumulate = [&](double w) {
+    parallel_rows(0, nj, [&](int j) {
+      for (int i = 0; i < ni; ++i) {
+        kx_(i, j) += w * k2x_(i, j);
+        ky_(i, j) += w * k2y_(i, j);
+      }
+    });
+  };
+  fill_ghosts(xi_x_, 0);
+  fill_ghosts(xi_y_, 1);
+  rhs(kx_, ky_, false);                // k1 (kx_ accumulates k1 + 2 k2 + 2 k3 + k4)
+  stage(kx_, ky_, 0.5 * dt);
+  rhs(k2x_, k2y_, true);               // k2
+  accumulate(2.0);
+  stage(k2x_, k2y_, 0.5 * dt);
+  rhs(k2x_, k2y_, true);               // k3
+  accumulate(2.0);
+  stage(k2x_, k2y_, dt);
+  rhs(k2x_, k2y_, true);               // k4
+  accumulate(1.0);
+  stage(kx_, ky_, dt / 6.0);
+  fill_ghosts(xi_x_, 0);
+  fill_ghosts(xi_y_, 1);
+}
+
+void Solid::extrapolate() {
+  // known = Omega_S of the current level set (the cells eq. 3.3 advects)
+  known_.fill(0);
+  for (int j = 0; j < nj_; ++j)
+    for (int i = 0; i < ni_; ++i) known_(i, j) = phi_(i, j) < 0.0 ? 1 : 0;
+  const int passes = int(std::ceil(opt_.band - 1e-9));
+  ExtrapStats st;
+  if (opt_.extrapolation == "pde") {
+    PdeOptions po;
+    po.band = band_;
+    po.tol = opt_.pde_tol;
+    po.max_iter = opt_.pde_max_iter;
+    static thread_local PdeWorkspace ws;
+    st = extrapolate_pde(xi_x_.view(), xi_y_.view(), known_.view(), phi_.view(), ni_, nj_,
+                         Grid::ng, grid_.dx, po, &ws);
+  } else {
+    LsqOptions lo;
+    lo.passes = passes;
+    static thread_local LsqWorkspace ws;
+    st = extrapolate_lsq(xi_x_.view(), xi_y_.view(), known_.view(), ni_, nj_, Grid::ng, grid_.dx,
+                         lo, &ws);
+  }
+  counters_.calls += 1;
+  counters_.cells_filled += st.cells_filled;
+  counters_.fallbacks += st.fallbacks;
+  counters_.iterations += st.iterations;
+  fill_ghosts(xi_x_, 0);
+  fill_ghosts(xi_y_, 1);
+}
+
+void Solid::compute_phi_from_xi() {
+  // eq. (3.2): phi(x, t) = phi0(xi(x, t)) wherever xi is valid; +band elsewhere
+  const Shape& s = *shape_;
+  const double cap = band_;
+  parallel_rows(0, nj_, [&](int j) {
+    for (int i = 0; i < ni_; ++i)
+      phi_(i, j) = known_(i, j) ? std::clamp(s.phi0(xi_x_(i, j), xi_y_(i, j)), -cap, cap) : cap;
+  });
+}
+
+void Solid::rebuild_level_set() {
+  compute_phi_from_xi();
+  if (opt_.reinitialise) reinitialise_fmm(phi_.view(), ni_, nj_, grid_.dx, band_, fmm_ws_);
+  fit_window(false);
+}
+
+void Solid::fit_window(bool force) {
+  const Grid& g = grid_;
+  // extent of the band (phi < band) in global cells
+  int a = 1 << 30, b = -(1 << 30), c = 1 << 30, d = -(1 << 30);
+  for (int j = 0; j < nj_; ++j)
+    for (int i = 0; i < ni_; ++i)
+      if (phi_(i, j) < band_) {
+        a = std::min(a, i0_ + i); b = std::max(b, i0_ + i + 1);
+        c = std::min(c, j0_ + j); d = std::max(d, j0_ + j + 1);
+      }
+  if (b <= a) throw std::runtime_error("solid '" + spec_.name + "' has vanished (no cell with phi < band)");
+  auto inside = [&](int lo, int hi, int w0, int wn, int n) {
+    return (lo - kMarginMin >= w0 || w0 == 0) && (hi + kMarginMin <= w0 + wn || w0 + wn == n);
+  };
+  bool ok_x = wrap_x_ || inside(a, b, i0_, ni_, g.nx);
+  bool ok_y = wrap_y_ || inside(c, d, j0_, nj_, g.ny);
+  if (!force && ok_x && ok_y) return;
+  if ((!wrap_x_ && px_ && (a - kMarginMin < 0 || b + kMarginMin > g.nx)) ||
+      (!wrap_y_ && py_ && (c - kMarginMin < 0 || d + kMarginMin > g.ny)))
+    throw std::runtime_error("solid '" + spec_.name +
+                             "' reached a periodic boundary (solids may not cross one unless "
+                             "they span the periodic direction)");
+  int na = wrap_x_ ? 0 : std::max(0, a - kMarginNew), nb = wrap_x_ ? g.nx : std::min(g.nx, b + kMarginNew);
+  int nc = wrap_y_ ? 0 : std::max(0, c - kMarginNew), nd = wrap_y_ ? g.ny : std::min(g.ny, d + kMarginNew);
+  const int nni = nb - na, nnj = nd - nc;
+  Field nx_x(nni, nnj, Grid::ng), nx_y(nni, nnj, Grid::ng), nphi(nni, nnj, Grid::ng, band_);
+  for (int j = 0; j < nnj; ++j)
+    for (int i = 0; i < nni; ++i) {
+      const int oi = na + i - i0_, oj = nc + j - j0_;
+      if (oi >= 0 && oi < ni_ && oj >= 0 && oj < nj_) {
+        nx_x(i, j) = xi_x_(oi, oj);
+        nx_y(i, j) = xi_y_(oi, oj);
+        nphi(i, j) = phi_(oi, oj);
+      } else {  // outside the band: xi will be extrapolated before it is used
+        nx_x(i, j) = g.xc(na + i);
+        nx_y(i, j) = g.yc(nc + j);
+      }
+    }
+  xi_x_ = std::move(nx_x);
+  xi_y_ = std::move(nx_y);
+  phi_ = std::move(nphi);
+  i0_ = na; j0_ = nc; ni_ = nni; nj_ = nnj;
+  for (Field* f : {&sxx_, &sxy_, &syy_}) f->resize(ni_, nj_, Grid::ng);
+  known_.resize(ni_, nj_, Grid::ng);
+  fill_ghosts(xi_x_, 0);
+  fill_ghosts(xi_y_, 1);
+  ++rewindows_;
+}
+
+double Solid::phi_global(int i, int j) const {
+  const int li = i - i0_, lj = j - j0_;
+  if (li < 0 || li >= ni_ || lj < 0 || lj >= nj_) return band_;
+  return phi_(li, lj);
+}
+
+void Solid::add_blend(Field& out, double q_s, double q_f) const {
+  const double dq = q_s - q_f;
+  if (dq == 0.0) return;
+  parallel_rows(0, nj_, [&](int j) {
+    for (int i = 0; i < ni_; ++i) {
+      const double ph = phi_(i, j);
+      if (ph >= wt_) continue;
+      out(i0_ + i, j0_ + j) += (1.0 - smoothed_heaviside(ph, wt_)) * dq;
+    }
+  });
+}
+
+double Solid::add_stress(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& fy) {
+  if (spec_.mu_s <= 0.0) return 0.0;
+  // stress one cell beyond the transition zone, so the non-conservative divergence at
+  // its edge sees valid neighbours
+  neo_hookean_stress(xi_x_.view(), xi_y_.view(), phi_.view(), ni_, nj_, grid_.dx, spec_.mu_s,
+                     wt_ + 1.5 * grid_.dx, sxx_.view(), sxy_.view(), syy_.view());
+  if (opt_.conservative)
+    return blend_stress(sxx_.view(), sxy_.view(), syy_.view(), phi_.view(), ni_, nj_, grid_.dx,
+                        wt_, spec_.mu_s, sxx.view(), sxy.view(), syy.view(), i0_, j0_);
+  for (Field* f : {&sxx_, &sxy_, &syy_}) {  // ghosts are outside the band: zero stress
+    for (int j = -Grid::ng; j < nj_ + Grid::ng; ++j)
+      for (int i = -Grid::ng; i < ni_ + Grid::ng; ++i)
+        if (i < 0 || j < 0 || i >= ni_ || j >= nj_) (*f)(i, j) = 0.0;
+  }
+  blend_stress_divergence(sxx_.view(), sxy_.view(), syy_.view(), phi_.view(), ni_, nj_, grid_.dx,
+                          wt_, fx.view(), fy.view(), i0_, j0_);
+  double e = 0.0;
+  for (int j = 0; j < nj_; ++j)
+    for (int i = 0; i < ni_; ++i)
+      if (phi_(i, j) < wt_)
+        e += (1.0 - smoothed_heaviside(phi_(i, j), wt_)) * 0.5 * (sxx_(i, j) + syy_(i, j));
+  return e * grid_.dx * grid_.dx;
+}
+
+void Solid::impose_initial_velocity(Field& u, Field& v) const {
+  if (spec_.velocity == "fluid") return;
+  const BoundingBox bb = shape_->bbox();
+  const double cx = spec_.shape.kind == "tabulated" ? 0.5 * (bb.xmin + bb.xmax) : spec_.shape.cx;
+  const double cy = spec_.shape.kind == "tabulated" ? 0.5 * (bb.ymin + bb.ymax) : spec_.shape.cy;
+  for (int j = 0; j < nj_; ++j)
+    for (int i = 0; i < ni_; ++i) {
+      const double ph = phi_(i, j);
+      if (ph >= wt_) continue;
+      const double s = 1.0 - smoothed_heaviside(ph, wt_);
+      const int gi = i0_ + i, gj = j0_ + j;
+      const double ur = spec_.u - spec_.omega * (grid_.yc(gj) - cy);
+      const double vr = spec_.v + spec_.omega * (grid_.xc(gi) - cx);
+      u(gi, gj) = (1.0 - s) * u(gi, gj) + s * ur;
+      v(gi, gj) = (1.0 - s) * v(gi, gj) + s * vr;
+    }
+}
+
+SolidDiagnostics Solid::diagnostics(const Field& u, const Field& v) const {
+  SolidDiagnostics d;
+  const double dx = grid_.dx, a = dx * dx;
+  double w = 0, wx = 0, wy = 0, wu = 0, wv = 0, smax = 0;
+  for (int j = 0; j < nj_; ++j)
+    for (int i = 0; i < ni_; ++i) {
+      const double ph = phi_(i, j);
+      const double f = std::clamp(0.5 - ph / dx, 0.0, 1.0);  // sub-cell fraction of phi < 0
+      if (f <= 0.0) continue;
+      const int gi = i0_ + i, gj = j0_ + j;
+      w += f;
+      wx += f * grid_.xc(gi);
+      wy += f * grid_.yc(gj);
+      wu += f * u(gi, gj);
+      wv += f * v(gi, gj);
+      if (ph < 0.0) smax = std::max(smax, std::abs(0.5 * (sxx_(i, j) + syy_(i, j))));
+    }
+  d.area = w * a;
+  if (w > 0) { d.cx = wx / w; d.cy = wy / w; d.u = wu / w; d.v = wv / w; }
+  d.sigma_max = smax;
+  return d;
+}
+
+double Solid::min_dt() const {
+  if (spec_.mu_s <= 0.0) return 1e300;
+  // section 4: dt <= P dx sqrt(rho_s / G), shear-wave speed sqrt(G / rho_s), G = 2 mu_s
+  return opt_.solid_cfl * grid_.dx / std::sqrt(2.0 * spec_.mu_s / spec_.density);
+}
+
+}  // namespace refmap

@@ -1,0 +1,117 @@
+#pragma once
+// One reference-map solid (Jain & Mani, sections 2-3; Algorithm 1 steps 1-3).
+//
+// Storage follows the solid: xi, phi, the known-mask and the solid stress live on a
+// rectangular WINDOW of the global grid that covers the solid, its extrapolation band
+// Omega_E and a margin. The window moves and grows with the solid (re-windowing copies
+// the overlap), so memory and work scale with the solid's size, not with the grid.
+//
+// A solid that spans a periodic direction completely (the elastic layer of the Couette
+// test) gets a window of the full width in that direction, with ghost cells wrapped and
+// the reference map shifted by the period: xi_x(x + L) = xi_x(x) + L.
+#include <memory>
+#include <string>
+
+#include "kernels/fast_marching.hpp"
+#include "solver/config.hpp"
+#include "solver/field.hpp"
+#include "solver/grid.hpp"
+#include "solver/shape.hpp"
+
+namespace refmap {
+
+struct ExtrapolationCounters {
+  long calls = 0;
+  long cells_filled = 0;
+  long fallbacks = 0;
+  long iterations = 0;  ///< PDE pseudo-time iterations (0 for least squares)
+};
+
+struct SolidDiagnostics {
+  double area = 0.0;        ///< sum of clamp(1/2 - phi/dx, 0, 1) dx^2 (sub-cell area of phi < 0)
+  double cx = 0.0, cy = 0.0;///< centroid of that area
+  double u = 0.0, v = 0.0;  ///< mean velocity over it
+  double sigma_max = 0.0;   ///< max |normal stress (sxx + syy)/2| inside the solid
+};
+
+class Solid {
+ public:
+  Solid(const SolidSpec& spec, const SolidsOptions& opt, const Grid& g, bool periodic_x,
+        bool periodic_y);
+
+  const SolidSpec& spec() const { return spec_; }
+  const Shape& shape() const { return *shape_; }
+
+  // --- Algorithm 1, steps 1-2 -------------------------------------------------------
+  /// Eq. (3.3), RK-4 in time with the face velocities frozen over the step, central
+  /// differences, H = 1 only where phi < 0; the band is re-extrapolated before the
+  /// right-hand side of stages 2-4.
+  void advect(const Field& uf, const Field& vf, double dt);
+  /// Fills xi in the band from the cells advected (phi < 0) by least squares or the PDE.
+  void extrapolate();
+  /// phi = phi0(xi) (eq. 3.2) on the band, reinitialised by fast marching; moves/grows
+  /// the window when the band comes near its edge.
+  void rebuild_level_set();
+
+  // --- mixture ---------------------------------------------------------------------
+  /// Adds (1 - H) (q_s - q_f) to `out` over the window (density or viscosity blending,
+  /// eq. 3.6: q = q_f + sum_i (1 - H_i)(q_s,i - q_f)).
+  void add_blend(Field& out, double q_s, double q_f) const;
+  /// Neo-Hookean stress of the solid on its window; conservative: adds (1-H) sigma_s to
+  /// the global tensor (sxx, sxy, syy); non-conservative: adds (1-H) div sigma_s to the
+  /// force (fx, fy). Returns the elastic energy.
+  double add_stress(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& fy);
+
+  /// Sets the initial velocity inside the solid (rigid motion) blended with (1 - H).
+  void impose_initial_velocity(Field& u, Field& v) const;
+
+  SolidDiagnostics diagnostics(const Field& u, const Field& v) const;
+  double min_dt() const;  ///< shear-wave limit of section 4
+
+  // --- window and fields (window-local, (i, j) <-> global (i0 + i, j0 + j)) ----------
+  int i0() const { return i0_; }
+  int j0() const { return j0_; }
+  int ni() const { return ni_; }
+  int nj() const { return nj_; }
+  const Field& xi_x() const { return xi_x_; }
+  const Field& xi_y() const { return xi_y_; }
+  const Field& phi() const { return phi_; }
+  const Field& stress_xx() const { return sxx_; }
+  const Field& stress_xy() const { return sxy_; }
+  const Field& stress_yy() const { return syy_; }
+  Field& xi_x_mut() { return xi_x_; }
+  Field& xi_y_mut() { return xi_y_; }
+  /// phi at a global cell: the window's value, +band outside the window.
+  double phi_global(int i, int j) const;
+  const ExtrapolationCounters& extrapolation_counters() const { return counters_; }
+  long rewindows() const { return rewindows_; }
+  double band() const { return band_; }  ///< w_E in length units
+  double transition() const { return wt_; }
+
+ private:
+  void initialise();
+  /// Chooses the window for the current band (plus margin) and copies the overlap.
+  void fit_window(bool force);
+  /// Window ghosts: wrapped (+ the period for the matching xi component: component 0 =
+  /// xi_x, 1 = xi_y, 2 = neither) across a spanned periodic direction, else linear
+  /// extrapolation.
+  void fill_ghosts(Field& f, int component) const;
+  void compute_phi_from_xi();
+
+  SolidSpec spec_;
+  SolidsOptions opt_;
+  Grid grid_;
+  bool px_, py_;
+  bool wrap_x_ = false, wrap_y_ = false;  ///< window spans a periodic direction
+  std::unique_ptr<Shape> shape_;
+  double band_, wt_;
+  int i0_ = 0, j0_ = 0, ni_ = 0, nj_ = 0;
+  Field xi_x_, xi_y_, phi_, kx_, ky_, k2x_, k2y_, xs_, ys_, x0x_, x0y_;
+  Field sxx_, sxy_, syy_;
+  Mask known_;
+  FmmWorkspace fmm_ws_;
+  ExtrapolationCounters counters_;
+  long rewindows_ = 0;
+};
+
+}  // namespace refmap
