@@ -110,23 +110,6 @@ struct Bicubic {
     ps = c[1] + s * (2.0 * c[2] + 3.0 * s * c[3]);
     pt = d[0] + s * (d[1] + s * (d[2] + s * d[3]));
   }
-
-  /// value, gradient and Hessian
-  void eval2(double s, double t, double& p, double& ps, double& pt, double& pss, double& pst,
-             double& ptt) const {
-    double c[4], d[4], e[4];
-    for (int m = 0; m < 4; ++m) {
-      c[m] = a[m][0] + t * (a[m][1] + t * (a[m][2] + t * a[m][3]));
-      d[m] = a[m][1] + t * (2.0 * a[m][2] + 3.0 * t * a[m][3]);
-      e[m] = 2.0 * a[m][2] + 6.0 * t * a[m][3];
-    }
-    p = c[0] + s * (c[1] + s * (c[2] + s * c[3]));
-    ps = c[1] + s * (2.0 * c[2] + 3.0 * s * c[3]);
-    pss = 2.0 * c[2] + 6.0 * s * c[3];
-    pt = d[0] + s * (d[1] + s * (d[2] + s * d[3]));
-    pst = d[1] + s * (2.0 * d[2] + 3.0 * s * d[3]);
-    ptt = e[0] + s * (e[1] + s * (e[2] + s * e[3]));
-  }
 };
 
 constexpr double kWander2 = 4.0;  // the closest point must lie within 2 cells of the node

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <cstdlib>
 #include <stdexcept>
 #include <utility>
 
@@ -35,27 +34,34 @@ inline void ghost_cols(const Stencil& s, double* xr) {
   }
 }
 
-/// One colour of a Gauss-Seidel half-sweep on row j: cells with (i + j) % 2 == colour.
-/// The whole row is computed with contiguous (vectorised) loads; only the cells of the
-/// colour are stored (masked store). Cells of the colour only read cells of the other
-/// colour, which this half-sweep does not change, so the loop has no real dependence.
-inline void rb_row(const Stencil& s, View x, CView f, int j, int colour, double omega) {
-  double* __restrict xr = &x(0, j);
-  const double* xs = &x(0, j - 1);
-  const double* xn = &x(0, j + 1);
-  const double* __restrict fr = &f(0, j);
-  const double* __restrict t = &s.tx(0, j);
-  const double* __restrict ts = &s.ty(0, j);
-  const double* __restrict tn = &s.ty(0, j + 1);
-  const double* __restrict id = &s.invd(0, j);
-  const int nx = s.nx;
-  const int par = (colour + j) & 1;
+/// Inner loop of a half-sweep: the cells i = par, par + 2, ... of one row. A stride-2 loop:
+/// GCC vectorises the loads with permutes and stores element-wise, so only cells of the
+/// colour are written. (Alternatives measured slower: a contiguous loop with a masked
+/// store stalls on store-to-load forwarding, x[i-1] being loaded right after x[i..i+7] is
+/// stored; computing a block into a buffer first doubles the arithmetic.) Kept out of line:
+/// GCC 12 refuses to vectorise it once it sees that xr aliases xs/xn.
+__attribute__((noinline)) void rb_row_kernel(double* xr, const double* __restrict xs,
+                                             const double* __restrict xn,
+                                             const double* __restrict fr,
+                                             const double* __restrict t,
+                                             const double* __restrict ts,
+                                             const double* __restrict tn,
+                                             const double* __restrict id, int nx, int par,
+                                             double omega) {
 #pragma omp simd
-  for (int i = 0; i < nx; ++i) {
-    const double v =
+  for (int i = par; i < nx; i += 2) {
+    const double g =
         (t[i] * xr[i - 1] + t[i + 1] * xr[i + 1] + ts[i] * xs[i] + tn[i] * xn[i] - fr[i]) * id[i];
-    if ((i & 1) == par) xr[i] += omega * (v - xr[i]);
+    xr[i] += omega * (g - xr[i]);
   }
+}
+
+/// One colour of an (over-relaxed) Gauss-Seidel half-sweep on row j: cells with
+/// (i + j) % 2 == colour; periodic ghost columns refreshed.
+inline void rb_row(const Stencil& s, View x, CView f, int j, int colour, double omega) {
+  double* xr = &x(0, j);
+  rb_row_kernel(xr, &x(0, j - 1), &x(0, j + 1), &f(0, j), &s.tx(0, j),
+                &s.ty(0, j), &s.ty(0, j + 1), &s.invd(0, j), s.nx, (colour + j) & 1, omega);
   ghost_cols(s, xr);
 }
 
@@ -184,9 +190,7 @@ Transfer1D build_transfer(const std::vector<double>& cf, const std::vector<doubl
   // restriction = P^T, gathered per coarse cell
   constexpr int K = Transfer1D::K;
   std::vector<std::vector<std::pair<int, double>>> lists(nc);
-  static const bool pc = std::getenv("MG_PCREST") != nullptr;
   for (int i = 0; i < nf; ++i) {
-    if (pc) { lists[std::min(i / 2, nc - 1)].push_back({i, 1.0}); continue; }
     if (T.w0[i] > 0) lists[T.p0[i]].push_back({i, T.w0[i]});
     if (T.w1[i] > 0) lists[T.p1[i]].push_back({i, T.w1[i]});
   }
@@ -250,9 +254,90 @@ void fill_ghosts(const Stencil& s, View x) {
   std::memcpy(&x(-1, ny), &x(-1, s.py ? 0 : ny - 1), bytes);
 }
 
-void smooth_rbgs(const Stencil& s, View x, CView f, int sweeps, bool black_first, double omega) {
-  if (sweeps <= 0) return;
+namespace {
+
+/// sum over row j of (f - L x)^2.
+inline double residual_row_norm2(const Stencil& s, CView x, CView f, int j) {
+  const double* xr = &x(0, j);
+  const double* xs = &x(0, j - 1);
+  const double* xn = &x(0, j + 1);
+  const double* fr = &f(0, j);
+  const double* t = &s.tx(0, j);
+  const double* ts = &s.ty(0, j);
+  const double* tn = &s.ty(0, j + 1);
+  const int nx = s.nx;
+  double a = 0.0;
+#pragma omp simd reduction(+ : a)
+  for (int i = 0; i < nx; ++i) {
+    const double c = xr[i];
+    const double v = fr[i] - (t[i] * (xr[i - 1] - c) + t[i + 1] * (xr[i + 1] - c) +
+                              ts[i] * (xs[i] - c) + tn[i] * (xn[i] - c));
+    a += v * v;
+  }
+  return a;
+}
+
+/// Walls in y: all `sweeps` sweeps in ONE pass over memory. The 2*sweeps half-sweeps
+/// ("stages"; stage k has colour c1 + k mod 2) form a pipeline, stage k trailing stage
+/// k-1 by one row: at step j, stage k updates row j - k. Stage k on row r needs stage k-1
+/// on rows r-1..r+1 (done earlier in the same step or before) and must precede stage k+1
+/// on rows r-1..r+1 (done later) -- exactly the order of sequential sweeps, so the result
+/// is bitwise that of `sweeps` separate sweeps. With res2, a last stage S = 2*sweeps
+/// accumulates the squared residual of the final iterate, one row behind.
+/// Threads own row chunks [j0, j1). In the pipelined pass thread t does stage k on rows
+/// [j0 + k, j1 - k) (the whole range at the domain walls); the rows left over around each
+/// chunk boundary b (stage k: [b - k, b + k)) form a "valley" which thread t finishes after
+/// a barrier, stage by stage. Needs chunks of >= 2 * (stages + 1) rows.
+void rbgs_pipeline_walls(const Stencil& s, View x, CView f, int sweeps, int c1, double omega,
+                         double* res2) {
+  const int S = 2 * sweeps, ny = s.ny;
+  const int stages = res2 ? S + 1 : S;
+  const int nt_want = team(s.threads, ny / (2 * stages));
+  double acc = 0.0;
+#pragma omp parallel num_threads(nt_want) if (nt_want > 1) reduction(+ : acc)
+  {
+    const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+    const int j0 = chunk_lo(ny, nt, t), j1 = chunk_lo(ny, nt, t + 1);
+    const bool first = t == 0, last = t == nt - 1;
+    const int jend = last ? j1 + stages - 1 : j1;
+    for (int j = j0; j < jend; ++j)
+      for (int k = 0; k < stages; ++k) {
+        const int r = j - k;
+        const int lo = first ? 0 : j0 + k, hi = last ? ny : j1 - k;
+        if (r < lo || r >= hi) continue;
+        if (k < S)
+          rb_row(s, x, f, r, (c1 + k) & 1, omega);
+        else
+          acc += residual_row_norm2(s, x, f, r);
+      }
+    if (nt > 1) {
+#pragma omp barrier
+      if (!last) {
+        for (int k = 1; k < S; ++k)
+          for (int r = j1 - k; r < j1 + k; ++r) rb_row(s, x, f, r, (c1 + k) & 1, omega);
+        if (res2)
+          for (int r = j1 - S; r < j1 + S; ++r) acc += residual_row_norm2(s, x, f, r);
+      }
+    }
+  }
+  if (res2) *res2 = acc;
+}
+
+}  // namespace
+
+void smooth_rbgs(const Stencil& s, View x, CView f, int sweeps, bool black_first, double omega,
+                 double* res2) {
+  if (sweeps <= 0) {
+    if (res2) *res2 = residual(s, x, f, View{});
+    return;
+  }
   const int c1 = black_first ? 1 : 0, c2 = 1 - c1;
+  if (!s.py) {
+    rbgs_pipeline_walls(s, x, f, sweeps, c1, omega, res2);
+    return;
+  }
+  // periodic in y: one sweep per pass, the wrap rows finished after a barrier with the
+  // ghost rows refreshed in between
   const int nt_want = team(s.threads, s.ny);
 #pragma omp parallel num_threads(nt_want) if (nt_want > 1)
   {
@@ -266,22 +351,19 @@ void smooth_rbgs(const Stencil& s, View x, CView f, int sweeps, bool black_first
         if (j - 1 > j0) rb_row(s, x, f, j - 1, c2, omega);
       }
 #pragma omp barrier
-      if (s.py) {
 #pragma omp single
-        copy_ghost_rows(s, x);
-      }
+      copy_ghost_rows(s, x);
       // phase 2: second colour on the two chunk-boundary rows
       if (j1 > j0) {
         rb_row(s, x, f, j0, c2, omega);
         if (j1 - 1 > j0) rb_row(s, x, f, j1 - 1, c2, omega);
       }
 #pragma omp barrier
-      if (s.py) {
 #pragma omp single
-        copy_ghost_rows(s, x);
-      }
+      copy_ghost_rows(s, x);
     }
   }
+  if (res2) *res2 = residual(s, x, f, View{});
 }
 
 void smooth_jacobi(const Stencil& s, View x, CView f, int sweeps, double omega,

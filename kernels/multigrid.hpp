@@ -87,8 +87,11 @@ void fill_ghosts(const Stencil& s, View x);
 /// first by one row. On a periodic direction of odd length the two cells meeting across
 /// the periodic boundary may have the same colour; they are then updated Jacobi-like
 /// (both from old values), which keeps every half-sweep symmetric.
+/// Walls in y: all sweeps are pipelined into a single pass over memory (bitwise the same
+/// result). With res2 != nullptr, *res2 = ||f - L x||^2 of the final iterate (fused into
+/// the same pass when walls in y, a separate pass otherwise).
 void smooth_rbgs(const Stencil& s, View x, CView f, int sweeps, bool black_first,
-                 double omega = 1.0);
+                 double omega = 1.0, double* res2 = nullptr);
 
 /// `sweeps` weighted-Jacobi sweeps x <- x + omega D^{-1} (f - L x), one pass per sweep
 /// (old rows kept in per-thread row buffers).

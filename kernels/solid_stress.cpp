@@ -72,3 +72,71 @@ void add_stress_divergence(CView sxx, CView sxy, CView syy, View fx, View fy, in
 }
 
 }  // namespace refmap
+
+namespace refmap {
+
+namespace {
+
+/// sigma_s - (pressure-free, rest-free) at the x-face between cells (i-1, j) and (i, j):
+/// returns (sigma_xx, sigma_xy) — the x-momentum and y-momentum fluxes through it.
+inline void x_face_flux(CView xx, CView xy, int i, int j, double inv, double& fxx, double& fxy,
+                        double c) {
+  const double gxx = (xx(i, j) - xx(i - 1, j)) * inv;
+  const double gyx = (xy(i, j) - xy(i - 1, j)) * inv;
+  const double gxy = 0.25 * (xx(i, j + 1) - xx(i, j - 1) + xx(i - 1, j + 1) - xx(i - 1, j - 1)) * inv;
+  const double gyy = 0.25 * (xy(i, j + 1) - xy(i, j - 1) + xy(i - 1, j + 1) - xy(i - 1, j - 1)) * inv;
+  const Sym2 b = left_cauchy_green(gxx, gxy, gyx, gyy);
+  fxx = c * (b.xx - 1.0);
+  fxy = c * b.xy;
+}
+
+/// Same at the y-face between (i, j-1) and (i, j): returns (sigma_xy, sigma_yy).
+inline void y_face_flux(CView xx, CView xy, int i, int j, double inv, double& fyx, double& fyy,
+                        double c) {
+  const double gxy = (xx(i, j) - xx(i, j - 1)) * inv;
+  const double gyy = (xy(i, j) - xy(i, j - 1)) * inv;
+  const double gxx = 0.25 * (xx(i + 1, j) - xx(i - 1, j) + xx(i + 1, j - 1) - xx(i - 1, j - 1)) * inv;
+  const double gyx = 0.25 * (xy(i + 1, j) - xy(i - 1, j) + xy(i + 1, j - 1) - xy(i - 1, j - 1)) * inv;
+  const Sym2 b = left_cauchy_green(gxx, gxy, gyx, gyy);
+  fyx = c * b.xy;
+  fyy = c * (b.yy - 1.0);
+}
+
+}  // namespace
+
+void add_face_stress_force(CView xi_x, CView xi_y, CView phi, int ni, int nj, double dx,
+                           double mu_s, double w_t, bool conservative, View fx, View fy, int i0,
+                           int j0) {
+  const double inv = 1.0 / dx;
+  const double c = 2.0 * mu_s;
+  const double cut = w_t + 2.0 * dx;  // (1 - H) vanishes beyond w_t; margin for the faces
+  parallel_rows(0, nj, [&](int j) {
+    for (int i = 0; i < ni; ++i) {
+      const double ph = phi(i, j);
+      if (!(ph < cut)) continue;
+      double w_l = 1.0, w_r = 1.0, w_b = 1.0, w_t_ = 1.0, w_c = 1.0;
+      if (conservative) {
+        w_l = 1.0 - smoothed_heaviside(0.5 * (phi(i - 1, j) + ph), w_t);
+        w_r = 1.0 - smoothed_heaviside(0.5 * (phi(i + 1, j) + ph), w_t);
+        w_b = 1.0 - smoothed_heaviside(0.5 * (phi(i, j - 1) + ph), w_t);
+        w_t_ = 1.0 - smoothed_heaviside(0.5 * (phi(i, j + 1) + ph), w_t);
+        if (w_l == 0.0 && w_r == 0.0 && w_b == 0.0 && w_t_ == 0.0) continue;
+      } else {
+        w_c = 1.0 - smoothed_heaviside(ph, w_t);
+        if (w_c == 0.0) continue;
+      }
+      // a face with zero weight is not evaluated: xi beyond the band may be stale
+      double lxx = 0, lxy = 0, rxx = 0, rxy = 0, bxy = 0, byy = 0, txy = 0, tyy = 0;
+      if (w_l != 0.0) x_face_flux(xi_x, xi_y, i, j, inv, lxx, lxy, c);
+      if (w_r != 0.0) x_face_flux(xi_x, xi_y, i + 1, j, inv, rxx, rxy, c);
+      if (w_b != 0.0) y_face_flux(xi_x, xi_y, i, j, inv, bxy, byy, c);
+      if (w_t_ != 0.0) y_face_flux(xi_x, xi_y, i, j + 1, inv, txy, tyy, c);
+      const double ax = (w_r * rxx - w_l * lxx + w_t_ * txy - w_b * bxy) * inv;
+      const double ay = (w_r * rxy - w_l * lxy + w_t_ * tyy - w_b * byy) * inv;
+      fx(i0 + i, j0 + j) += w_c * ax;
+      fy(i0 + i, j0 + j) += w_c * ay;
+    }
+  });
+}
+
+}  // namespace refmap

@@ -60,3 +60,23 @@ void add_stress_divergence(CView sxx, CView sxy, CView syy, View fx, View fy, in
                            double dx);
 
 }  // namespace refmap
+
+namespace refmap {
+
+/// Compact face-based divergence of the neo-Hookean stress of one solid (the default
+/// discretisation). On every face the gradient of xi is taken with the compact normal
+/// difference and the average of the two cells' central tangential differences (as the
+/// viscous stress in kernels/viscous.cpp), b and sigma_s = 2 mu_s (b - I) are evaluated
+/// there, and f = div sigma by face differences. Unlike the divergence of the cell-centred
+/// stress built from eq. (3.1) (a 2 dx-wide stencil that cannot see the odd-even mode,
+/// which then rings undamped inside an inviscid solid), this couples neighbouring cells.
+/// It is exact for affine xi like the cell form.
+///   conservative:     sigma_f blended with (1 - H(phi_f)), phi_f the mean of the two
+///                     cells, then differenced (divergence of the blended stress);
+///   non-conservative: f_P = (1 - H(phi_P)) div(sigma_s) (blend of divergences).
+/// Adds to the global fx, fy at (i0 + i, j0 + j) for window cells with phi < w_t + dx.
+void add_face_stress_force(CView xi_x, CView xi_y, CView phi, int ni, int nj, double dx,
+                           double mu_s, double w_t, bool conservative, View fx, View fy, int i0,
+                           int j0);
+
+}  // namespace refmap

@@ -60,6 +60,11 @@ struct SolidsOptions {
   double band = 6.0;        ///< w_E, width of the extrapolated band, in cells
   double transition = 3.0;  ///< w_T, half-width of the smoothed Heaviside (eq. 3.5), in cells
   bool conservative = true; ///< divergence of the blended stress (true) or blend of divergences
+  /// "cell" (default, the paper's discretisation): divergence of the cell-centred stress of
+  /// eqs. (2.9), (3.1); "face": compact face-based stress (couples the odd-even mode that
+  /// the 2 dx-wide cell form leaves undamped in an inviscid solid, but was seen to gain
+  /// energy in the disc-in-Taylor-Green case; see kernels/solid_stress.hpp)
+  std::string stress_discretisation = "cell";
   double solid_cfl = 0.5;   ///< P of section 4: dt <= P dx / sqrt(2 mu_s / rho_s)
   bool reinitialise = true; ///< fast-marching reinitialisation of phi0(xi)
   double pde_tol = 1e-10;   ///< PDE baseline: stop when the band's max change per iteration < tol

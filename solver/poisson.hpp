@@ -34,6 +34,7 @@ struct PoissonOptions {
   int max_iter = 200;
   int coarse_cells = 64;             ///< stop coarsening at or below this many cells
   double jacobi_omega = 0.8;         ///< weight of the "jacobi" smoother (4/5: optimal for 2-D 5-point)
+  double rbgs_omega = 1.25;          ///< over-relaxation of the "rbgs" smoother (1 = plain Gauss-Seidel)
   bool record_history = false;       ///< fill SolveStats::history (allocates; tests/studies only)
 };
 

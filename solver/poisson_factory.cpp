@@ -27,6 +27,8 @@ std::unique_ptr<PoissonSolver> make_poisson_solver(const PoissonOptions& opt) {
     throw std::invalid_argument("Poisson solver: coarse_cells must be >= 1");
   if (!(opt.jacobi_omega > 0 && opt.jacobi_omega <= 1))
     throw std::invalid_argument("Poisson solver: jacobi_omega must be in (0, 1]");
+  if (!(opt.rbgs_omega > 0 && opt.rbgs_omega < 2))
+    throw std::invalid_argument("Poisson solver: rbgs_omega must be in (0, 2)");
   if (opt.method == "multigrid") return std::make_unique<MultigridSolver>(opt);
   if (opt.method == "cg") return std::make_unique<CGSolver>(opt);
   if (opt.method == "mgpcg") return std::make_unique<MGPCGSolver>(opt);

@@ -14,18 +14,27 @@
 // length wraps the 3-cell coarse cell onto coarse cell 0). Coarsening stops when
 // nx*ny <= coarse_cells or either direction has fewer than 4 cells.
 //
-// Coarse operator (rediscretisation): the coarse face coefficient is the length-weighted
-// mean of beta over the fine faces that make up the coarse face, T_c = beta_c * len / dist.
+// Coarse operator (rediscretisation, 5-point on every level): the coarse face beta is the
+// mean of the fine-face beta along the coarse face's grid line, weighted tangentially with
+// the restriction weights (uniform levels: 1/4, 3/4, 3/4, 1/4 over the two fine faces the
+// coarse face covers and the next fine face on either side), T_c = beta_c * len / dist.
+// (Averaging the two covered faces only was measured: V-cycles then diverge at density
+// ratio 1000 on 1024^2, and with the Jacobi smoother already on 256^2.)
 // Prolongation: linear interpolation between cell centres in each direction (bilinear,
 // weights 9/16 3/16 3/16 1/16 on uniform levels), Neumann reflection (constant
 // extrapolation) at walls, wrap in periodic directions. Restriction: exactly P^T applied to
 // the cell-integrated residual (16-point full weighting on uniform levels; area-consistent).
-// Smoothers: red-black Gauss-Seidel (red-black before, black-red after the coarse
-// correction) or weighted Jacobi. Coarsest level: exact solve (dense Cholesky of
-// -L + alpha 1 1^T up to 1024 cells, sparse Cholesky with one pinned cell above), with the
-// right-hand side projected to zero sum and the zero-mean solution returned.
-// With equal pre/post smoothing counts the V-cycle is a symmetric linear operator (used by
-// mgpcg).
+// Smoothers: red-black Gauss-Seidel over-relaxed by rbgs_omega (default 1.25; on the 256^2
+// constant-coefficient problem V(2,2) needs 7 cycles to 1e-11 at a factor ~0.025 instead
+// of 10 cycles at ~0.1 with plain GS, and 18 instead of 23 cycles to 1e-10 at density
+// ratio 1000), or weighted Jacobi (jacobi_omega, default 0.8). Colour order red-black
+// before and after the coarse correction for "multigrid" (black-red after would repeat the
+// last colour: ~1 half-sweep lost per cycle), black-red after for mgpcg (symmetric).
+// Coarsest level: exact solve (dense Cholesky of -L + alpha 1 1^T up to 512 cells, sparse
+// Cholesky with one pinned cell above -- only for degenerate grids, e.g. 4 x 5000, and that
+// path allocates in solve), right-hand side projected to zero sum, zero-mean solution.
+// With equal pre/post smoothing counts and symmetric = true the V-cycle is a symmetric
+// linear operator (used by mgpcg).
 #include <memory>
 #include <vector>
 
@@ -79,14 +88,16 @@ class MultigridHierarchy {
 
   /// One cycle on the finest level for L x = f (finest-level, cell-integrated form: f is
   /// dx^2 * rhs with zero sum); x ghosts must be consistent, and are on return.
-  void cycle(View x, CView f, bool f_cycle);
+  /// With res2: *res2 = ||f - L x||^2 after the cycle (fused into the last smoothing pass
+  /// when possible).
+  void cycle(View x, CView f, bool f_cycle, double* res2 = nullptr);
   /// z = V-cycle applied to r with zero initial guess (symmetric when pre == post).
   void precondition(CView r, View z);
 
  private:
-  void vcycle(int l, View x, CView f);
-  void fcycle(int l, View x, CView f);
-  void smooth(int l, View x, CView f, int sweeps, bool post);
+  void vcycle(int l, View x, CView f, double* res2);
+  void fcycle(int l, View x, CView f, double* res2);
+  void smooth(int l, View x, CView f, int sweeps, bool post, double* res2);
   void coarse_solve(int l, View x, CView f);
   void build_coarse_solver();
 

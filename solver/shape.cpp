@@ -355,6 +355,7 @@ void Tabulated::finish() {
 
 double Tabulated::phi0(double X, double Y) const {
   double fx = (X - x0_) / dx_, fy = (Y - y0_) / dx_;
+  if (std::isnan(fx) || std::isnan(fy)) return std::numeric_limits<double>::quiet_NaN();
   fx = std::clamp(fx, 0.0, double(nx_ - 1));
   fy = std::clamp(fy, 0.0, double(ny_ - 1));
   const int i = std::min(int(fx), nx_ - 2), j = std::min(int(fy), ny_ - 2);

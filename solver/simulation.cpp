@@ -135,13 +135,11 @@ void Simulation::solid_force() {
   const Grid& g = cfg_.grid;
   elastic_energy_ = 0.0;
   if (sxx_.nx() == 0) return;
-  if (cfg_.solid_opt.conservative) {
-    sxx_.fill(0.0);
-    sxy_.fill(0.0);
-    syy_.fill(0.0);
-  }
+  sxx_.fill(0.0);
+  sxy_.fill(0.0);
+  syy_.fill(0.0);
   for (const auto& s : solids_) elastic_energy_ += s->add_stress(sxx_, sxy_, syy_, fx_, fy_);
-  if (cfg_.solid_opt.conservative) {
+  if (cfg_.solid_opt.conservative && cfg_.solid_opt.stress_discretisation == "cell") {
     for (Field* f : {&sxx_, &sxy_, &syy_}) fill_scalar_ghosts(*f, cfg_.bc);
     add_stress_divergence(sxx_.view(), sxy_.view(), syy_.view(), fx_.view(), fy_.view(), g.nx,
                           g.ny, g.dx);
@@ -437,6 +435,13 @@ std::string Simulation::check_health(double dt) const {
                       g.xc(i), g.yc(j), nstep_, t_);
         return buf;
       }
+  if (!(dt > 1e-9 * (cfg_.t_end - cfg_.t_start))) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "time step collapsed to %.3g at step %ld, t = %.6g: the solution is blowing up "
+                  "(kinetic energy %.3g)", dt, nstep_, t_, kinetic_energy());
+    return buf;
+  }
   // the face velocities are exactly divergence-free up to the Poisson tolerance; a
   // relative volume change of 1% per step means the projection failed
   double worst = 0.0;

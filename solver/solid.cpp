@@ -62,9 +62,8 @@ void Solid::initialise() {
     }
   fill_ghosts(xi_x_, 0);
   fill_ghosts(xi_y_, 1);
-  if (opt_.reinitialise) {
-    reinitialise_fmm(phi_.view(), ni_, nj_, g.dx, band_, fmm_ws_);
-  }
+  if (opt_.reinitialise) reinitialise_fmm(phi_.view(), ni_, nj_, g.dx, band_, fmm_ws_);
+  fill_ghosts(phi_, 2);
 }
 
 void Solid::fill_ghosts(Field& f, int component) const {
@@ -189,6 +188,7 @@ void Solid::rebuild_level_set() {
   compute_phi_from_xi();
   if (opt_.reinitialise) reinitialise_fmm(phi_.view(), ni_, nj_, grid_.dx, band_, fmm_ws_);
   fit_window(false);
+  fill_ghosts(phi_, 2);
 }
 
 void Solid::fit_window(bool force) {
@@ -260,26 +260,39 @@ void Solid::add_blend(Field& out, double q_s, double q_f) const {
 
 double Solid::add_stress(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& fy) {
   if (spec_.mu_s <= 0.0) return 0.0;
-  // stress one cell beyond the transition zone, so the non-conservative divergence at
-  // its edge sees valid neighbours
+  // cell-centred stress (eq. 2.9 with eq. 3.1), one cell beyond the transition zone so the
+  // non-conservative cell divergence at its edge sees valid neighbours; blended into the
+  // global tensor it is the output field and gives the elastic energy
   neo_hookean_stress(xi_x_.view(), xi_y_.view(), phi_.view(), ni_, nj_, grid_.dx, spec_.mu_s,
                      wt_ + 1.5 * grid_.dx, sxx_.view(), sxy_.view(), syy_.view());
-  if (opt_.conservative)
-    return blend_stress(sxx_.view(), sxy_.view(), syy_.view(), phi_.view(), ni_, nj_, grid_.dx,
-                        wt_, spec_.mu_s, sxx.view(), sxy.view(), syy.view(), i0_, j0_);
-  for (Field* f : {&sxx_, &sxy_, &syy_}) {  // ghosts are outside the band: zero stress
-    for (int j = -Grid::ng; j < nj_ + Grid::ng; ++j)
-      for (int i = -Grid::ng; i < ni_ + Grid::ng; ++i)
-        if (i < 0 || j < 0 || i >= ni_ || j >= nj_) (*f)(i, j) = 0.0;
-  }
-  blend_stress_divergence(sxx_.view(), sxy_.view(), syy_.view(), phi_.view(), ni_, nj_, grid_.dx,
-                          wt_, fx.view(), fy.view(), i0_, j0_);
-  double e = 0.0;
+  const double energy = blend_stress(sxx_.view(), sxy_.view(), syy_.view(), phi_.view(), ni_, nj_,
+                                     grid_.dx, wt_, spec_.mu_s, sxx.view(), sxy.view(), syy.view(),
+                                     i0_, j0_);
+  // largest principal stretch squared (eigenvalue of b) in the solid, for the time step
+  double lmax = 1.0;
+  const double inv2mu = 1.0 / (2.0 * spec_.mu_s);
   for (int j = 0; j < nj_; ++j)
-    for (int i = 0; i < ni_; ++i)
-      if (phi_(i, j) < wt_)
-        e += (1.0 - smoothed_heaviside(phi_(i, j), wt_)) * 0.5 * (sxx_(i, j) + syy_(i, j));
-  return e * grid_.dx * grid_.dx;
+    for (int i = 0; i < ni_; ++i) {
+      if (!(phi_(i, j) < wt_)) continue;
+      const double bxx = 1.0 + sxx_(i, j) * inv2mu, byy = 1.0 + syy_(i, j) * inv2mu;
+      const double bxy = sxy_(i, j) * inv2mu;
+      const double m = 0.5 * (bxx + byy), d = std::sqrt(0.25 * (bxx - byy) * (bxx - byy) + bxy * bxy);
+      lmax = std::max(lmax, m + d);
+    }
+  max_stretch2_ = lmax;
+  if (opt_.stress_discretisation == "face") {
+    add_face_stress_force(xi_x_.view(), xi_y_.view(), phi_.view(), ni_, nj_, grid_.dx, spec_.mu_s,
+                          wt_, opt_.conservative, fx.view(), fy.view(), i0_, j0_);
+  } else if (!opt_.conservative) {
+    for (Field* f : {&sxx_, &sxy_, &syy_})  // ghosts are outside the band: zero stress
+      for (int j = -Grid::ng; j < nj_ + Grid::ng; ++j)
+        for (int i = -Grid::ng; i < ni_ + Grid::ng; ++i)
+          if (i < 0 || j < 0 || i >= ni_ || j >= nj_) (*f)(i, j) = 0.0;
+    blend_stress_divergence(sxx_.view(), sxy_.view(), syy_.view(), phi_.view(), ni_, nj_,
+                            grid_.dx, wt_, fx.view(), fy.view(), i0_, j0_);
+  }
+  // "cell" + conservative: the caller takes the divergence of the global blended tensor
+  return energy;
 }
 
 void Solid::impose_initial_velocity(Field& u, Field& v) const {
@@ -325,8 +338,12 @@ SolidDiagnostics Solid::diagnostics(const Field& u, const Field& v) const {
 
 double Solid::min_dt() const {
   if (spec_.mu_s <= 0.0) return 1e300;
-  // section 4: dt <= P dx sqrt(rho_s / G), shear-wave speed sqrt(G / rho_s), G = 2 mu_s
-  return opt_.solid_cfl * grid_.dx / std::sqrt(2.0 * spec_.mu_s / spec_.density);
+  // section 4: dt <= P dx sqrt(rho_s / G), shear-wave speed sqrt(G / rho_s), G = 2 mu_s.
+  // At finite strain the neo-Hookean tangent stiffness along a principal direction grows
+  // with the stretch squared (eigenvalue of b), so the wave speed is taken as
+  // sqrt(G lambda_max(b) / rho_s); at rest this is the paper's bound.
+  return opt_.solid_cfl * grid_.dx /
+         std::sqrt(2.0 * spec_.mu_s * std::max(1.0, max_stretch2_) / spec_.density);
 }
 
 }  // namespace refmap

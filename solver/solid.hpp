@@ -112,6 +112,7 @@ class Solid {
   FmmWorkspace fmm_ws_;
   ExtrapolationCounters counters_;
   long rewindows_ = 0;
+  double max_stretch2_ = 1.0;  ///< largest eigenvalue of b in the solid at the last stress evaluation
 };
 
 }  // namespace refmap

@@ -205,13 +205,18 @@ TEST(FastMarching, SignPreservedEverywhere) {
       [&](double x, double y) { return z.phi0(x, y); },
       [](double x, double y) { return std::sin(9.0 * x) * std::cos(7.0 * y + 0.3) + 0.2 * std::sin(31.0 * x * y); },
       [](double x, double y) { return std::abs(x - 0.5) - 0.004; },  // sliver thinner than a cell
+      [&](double x, double y) {  // specks: circles of radius 0.4 dx and 1.5 dx, a saddle
+        return std::min({std::hypot(x - 0.3, y - 0.3) - 0.4 * dx, std::hypot(x - 0.7, y - 0.31) - 1.5 * dx,
+                         (x - 0.5) * (y - 0.7) * 40.0 + 1e-3});
+      },
   };
+  int fallbacks = 0;
   for (const Fn& f : fields) {
     Field phi(n, n, 2, kGhost);
     fill(phi, n, f);
     const Field in = phi;
     FmmWorkspace ws;
-    reinitialise_fmm(phi.view(), n, n, dx, band, ws);
+    fallbacks += reinitialise_fmm(phi.view(), n, n, dx, band, ws).newton_failures;
     int flipped = 0, out_of_band = 0, nonfinite = 0;
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
@@ -224,6 +229,7 @@ TEST(FastMarching, SignPreservedEverywhere) {
     EXPECT_EQ(out_of_band, 0);
     expect_ghosts_untouched(phi);
   }
+  std::printf("  closest-point fallbacks to |phi|/|grad phi| over the rough fields: %d\n", fallbacks);
 }
 
 TEST(FastMarching, ZalesakDiskStaysCloseToExactDistance) {

@@ -375,6 +375,7 @@ TEST(ShapeTabulated, ReproducesBilinearFunctionExactly) {
   // outside: constant extension from the nearest boundary point
   EXPECT_NEAR(t.phi0(5.0, 0.6), f(1.3, 0.6), 1e-14);
   EXPECT_NEAR(t.phi0(-9.0, -9.0), f(-0.2, 0.1), 1e-14);
+  EXPECT_TRUE(std::isnan(t.phi0(std::nan(""), 0.5)));  // no out-of-range read
   // the bbox holds every non-positive sample
   const BoundingBox b = t.bbox();
   for (int j = 0; j < 5; ++j)
