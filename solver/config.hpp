@@ -67,7 +67,7 @@ struct SolidsOptions {
   std::string stress_discretisation = "cell";
   double solid_cfl = 0.5;   ///< P of section 4: dt <= P dx / sqrt(2 mu_s / rho_s)
   bool reinitialise = true; ///< fast-marching reinitialisation of phi0(xi)
-  double pde_tol = 1e-10;   ///< PDE baseline: stop when the band's max change per iteration < tol
+  double pde_tol = 1e-8;    ///< PDE baseline: stop when max |change| per iteration < tol * (largest known |xi|)
   int pde_max_iter = 1000;
 };
 

@@ -149,6 +149,18 @@ int cmd_run(const std::string& scene, std::string out, int threads, bool threads
     std::printf("\n");
     std::ostringstream table;
     sim.timers().report(table, s.wall_s);
+    for (const auto& solid : sim.solids()) {
+      const refmap::ExtrapolationCounters& c = solid->extrapolation_counters();
+      char line[256];
+      std::snprintf(line, sizeof line,
+                    "solid %-15s %s extrapolation: %ld calls, %ld cells filled, %ld fallbacks%s, "
+                    "%ld window moves\n",
+                    solid->spec().name.c_str(), sim.config().solid_opt.extrapolation.c_str(), c.calls,
+                    c.cells_filled, c.fallbacks,
+                    c.iterations ? (", " + std::to_string(c.iterations) + " PDE iterations").c_str() : "",
+                    solid->rewindows());
+      table << line;
+    }
     std::fputs(table.str().c_str(), stdout);
   }
   return 0;

@@ -1,0 +1,158 @@
+// Whole time steps of the solver (Google Benchmark). Thread count: OMP_NUM_THREADS.
+//
+//   WholeFluidStep/N   lid-driven cavity at Re = 1000 (scenes/lid_driven_cavity_re1000.toml:
+//                      central advection, multigrid V-cycles to 1e-8) on N x N cells
+//   WholeSolidStep/N   one soft disc in a decaying Taylor-Green vortex
+//                      (scenes/disc_tgv.toml: LSQ extrapolation, conservative cell stress,
+//                      multigrid to 1e-9) on N x N cells
+//
+// The scenes are inline TOML (load_scene_string) so the benchmark does not depend on the
+// working directory. Each Simulation is built once per (scene, N) and kept across the
+// repetitions (only one at a time, to bound memory); after construction it runs
+// kWarmupSteps steps outside the timing, then dt is fixed to the stable time step of that
+// state (Simulation::stable_dt()) and every timed iteration is one sim.step(dt), so the
+// flow keeps evolving from one iteration to the next (the Poisson iteration count can vary
+// slightly between repetitions).
+//
+// Counters: cells_per_s (N^2 per step), us_per_cell_step (wall microseconds per cell per
+// step), poisson_iters (multigrid cycles of the last timed step), dt, threads.
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "solver/scene.hpp"
+#include "solver/simulation.hpp"
+
+namespace {
+
+using namespace refmap;
+
+constexpr int kWarmupSteps = 3;
+
+const char* kCavityRe1000 = R"(
+name = "bench_cavity_re1000"
+[domain]
+lx = 1.0
+[grid]
+nx = 128
+ny = 128
+[fluid]
+density = 1.0
+viscosity = 0.001
+[boundary]
+left = "no_slip"
+right = "no_slip"
+bottom = "no_slip"
+top = { type = "moving_wall", velocity = 1.0 }
+[initial]
+velocity = "zero"
+[time]
+end = 120.0
+cfl = 1.0
+[solver]
+advection = "central"
+poisson = "multigrid"
+tol = 1e-8
+[output]
+vtk = false
+)";
+
+const char* kDiscTgv = R"(
+name = "bench_disc_tgv"
+[domain]
+lx = 1.0
+[grid]
+nx = 64
+ny = 64
+[fluid]
+density = 1.0
+viscosity = 0.001
+[boundary]
+left = "free_slip"
+right = "free_slip"
+bottom = "free_slip"
+top = "free_slip"
+[initial]
+velocity = "taylor_green"
+amplitude = 0.3141592653589793
+wavenumber = 6.283185307179586
+[time]
+end = 4.0
+cfl = 0.5
+[solver]
+poisson = "multigrid"
+tol = 1e-9
+[solids]
+extrapolation = "lsq"
+conservative = true
+[[solid]]
+name = "disc"
+shape = "circle"
+center = [0.5, 0.5]
+radius = 0.2
+mu_s = 0.5
+density = 1.0
+velocity = "fluid"
+[output]
+vtk = false
+)";
+
+/// The one cached simulation (scene name + N), with its fixed time step.
+struct Cached {
+  std::string key;
+  std::unique_ptr<Simulation> sim;
+  double dt = 0.0;
+};
+
+Cached& cached(const char* toml, const std::string& scene, int n) {
+  static Cached c;
+  const std::string key = scene + "/" + std::to_string(n);
+  if (c.key != key) {
+    c.sim.reset();  // free the previous grid first
+    const std::vector<std::string> sets = {"grid.nx=" + std::to_string(n),
+                                           "grid.ny=" + std::to_string(n)};
+    c.sim = std::make_unique<Simulation>(load_scene_string(toml, scene + ".toml", sets));
+    for (int k = 0; k < kWarmupSteps; ++k) c.sim->step();
+    c.dt = c.sim->stable_dt();
+    c.key = key;
+  }
+  return c;
+}
+
+void run_steps(benchmark::State& state, const char* toml, const std::string& scene) {
+  const int n = int(state.range(0));
+  Cached& c = cached(toml, scene, n);
+  for (auto _ : state) {
+    c.sim->step(c.dt);
+    benchmark::ClobberMemory();
+  }
+  const double cells = double(n) * n * double(state.iterations());
+  state.counters["cells_per_s"] = benchmark::Counter(cells, benchmark::Counter::kIsRate);
+  // (cells * 1e-6 / s)^-1 = microseconds per cell-step
+  state.counters["us_per_cell_step"] = benchmark::Counter(
+      cells * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["poisson_iters"] = c.sim->last_poisson_iterations();
+  state.counters["dt"] = c.dt;
+  state.counters["threads"] = omp_get_max_threads();
+}
+
+void BM_WholeFluidStep(benchmark::State& state) { run_steps(state, kCavityRe1000, "cavity"); }
+void BM_WholeSolidStep(benchmark::State& state) { run_steps(state, kDiscTgv, "disc_tgv"); }
+
+}  // namespace
+
+BENCHMARK(BM_WholeFluidStep)
+    ->Name("WholeFluidStep")
+    ->Arg(256)
+    ->Arg(1024)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_WholeSolidStep)
+    ->Name("WholeSolidStep")
+    ->Arg(256)
+    ->Arg(1024)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
