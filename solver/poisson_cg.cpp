@@ -49,14 +49,7 @@ SolveStats CGSolver::solve(const Field& rhs, Field& x) {
   SolveStats st;
   const double bnorm = detail::prepare_rhs(op_, s, rhs, x, f_.view());
   View xv = x.view();
-  if (bnorm == 0.0) {
-    mg::fill(s, xv, 0.0);
-    mg::fill_ghosts(s, xv);
-    st.converged = true;
-    if (opt_.record_history) st.history.push_back(0.0);
-    return st;
-  }
-  mg::fill_ghosts(s, xv);
+  if (!detail::start_solve(s, bnorm, xv, opt_.record_history, st)) return st;
   double rel = std::sqrt(mg::residual(s, xv, f_.cview(), r_.view())) / bnorm;
   if (opt_.record_history) st.history.push_back(rel);
   int it = 0;
@@ -123,14 +116,7 @@ SolveStats MGPCGSolver::solve(const Field& rhs, Field& x) {
   SolveStats st;
   const double bnorm = detail::prepare_rhs(op_, s, rhs, x, f_.view());
   View xv = x.view();
-  if (bnorm == 0.0) {
-    mg::fill(s, xv, 0.0);
-    mg::fill_ghosts(s, xv);
-    st.converged = true;
-    if (opt_.record_history) st.history.push_back(0.0);
-    return st;
-  }
-  mg::fill_ghosts(s, xv);
+  if (!detail::start_solve(s, bnorm, xv, opt_.record_history, st)) return st;
   double rel = std::sqrt(mg::residual(s, xv, f_.cview(), r_.view())) / bnorm;
   if (opt_.record_history) st.history.push_back(rel);
   int it = 0;

@@ -440,6 +440,18 @@ double prepare_rhs(const PoissonOperator& op, const mg::Stencil& s, const Field&
   return std::sqrt(mg::shift_scale(s, rhs.cview(), mean, h2, f));
 }
 
+bool start_solve(const mg::Stencil& s, double bnorm, View x, bool record, SolveStats& st) {
+  if (bnorm == 0.0) {
+    mg::fill(s, x, 0.0);
+    mg::fill_ghosts(s, x);
+    st.converged = true;
+    if (record) st.history.push_back(0.0);
+    return false;
+  }
+  mg::fill_ghosts(s, x);
+  return true;
+}
+
 void remove_mean(const mg::Stencil& s, View x) {
   const double mean = mg::sum(s, x) / (double(s.nx) * double(s.ny));
   mg::add_scalar(s, x, -mean);
@@ -473,14 +485,7 @@ SolveStats MultigridSolver::solve(const Field& rhs, Field& x) {
   SolveStats st;
   const double bnorm = detail::prepare_rhs(op_, s, rhs, x, f0_.view());
   View xv = x.view();
-  if (bnorm == 0.0) {
-    mg::fill(s, xv, 0.0);
-    mg::fill_ghosts(s, xv);
-    st.converged = true;
-    if (opt_.record_history) st.history.push_back(0.0);
-    return st;
-  }
-  mg::fill_ghosts(s, xv);
+  if (!detail::start_solve(s, bnorm, xv, opt_.record_history, st)) return st;
   double rel = std::sqrt(mg::residual(s, xv, f0_.cview(), View{})) / bnorm;
   if (opt_.record_history) st.history.push_back(rel);
   const bool f_cycle = opt_.cycle == "F";

@@ -136,6 +136,9 @@ namespace detail {
 /// f = dx^2 (rhs - mean rhs) into f, returns ||f||_2.
 double prepare_rhs(const PoissonOperator& op, const mg::Stencil& s, const Field& rhs,
                    const Field& x, View f);
+/// Shared start of a solve after prepare_rhs: if bnorm = 0 sets x = 0 and a converged
+/// `st` and returns false (nothing to solve); else refreshes x's ghosts and returns true.
+bool start_solve(const mg::Stencil& s, double bnorm, View x, bool record, SolveStats& st);
 /// Shared epilogue: x -= mean(x), ghosts refreshed.
 void remove_mean(const mg::Stencil& s, View x);
 }  // namespace detail

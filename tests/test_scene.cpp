@@ -592,7 +592,7 @@ TEST_F(SceneFiles, SceneSolidsDefaultsAndShapes) {
   EXPECT_TRUE(c.solid_opt.conservative);
   EXPECT_EQ(c.solid_opt.solid_cfl, 0.5);
   EXPECT_TRUE(c.solid_opt.reinitialise);
-  EXPECT_EQ(c.solid_opt.pde_tol, 1e-10);
+  EXPECT_EQ(c.solid_opt.pde_tol, 1e-8);
   EXPECT_EQ(c.solid_opt.pde_max_iter, 1000);
 
   c = load_scene(write(std::string(kBase) + kOneCircle));
