@@ -111,6 +111,7 @@ class Simulation {
   std::vector<std::unique_ptr<Solid>> solids_;
   Field sxx_, sxy_, syy_;                  // blended solid stress (global, if any solid is elastic)
   double elastic_energy_ = 0.0;
+  bool prescribed_depends_on_time_ = false;  ///< flow = "prescribed" with an expression of t
   std::unique_ptr<PoissonSolver> poisson_;
   SolveStats last_stats_;
   PhaseTimers timers_;

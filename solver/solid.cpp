@@ -1,6 +1,7 @@
 #include "solver/solid.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -149,6 +150,7 @@ void Solid::extrapolate() {
   known_.fill(0);
   for (int j = 0; j < nj_; ++j)
     for (int i = 0; i < ni_; ++i) known_(i, j) = phi_(i, j) < 0.0 ? 1 : 0;
+  const auto t0 = std::chrono::steady_clock::now();
   const int passes = int(std::ceil(opt_.band - 1e-9));
   ExtrapStats st;
   if (opt_.extrapolation == "pde") {
@@ -172,6 +174,7 @@ void Solid::extrapolate() {
   counters_.iterations += st.iterations;
   fill_ghosts(xi_x_, 0);
   fill_ghosts(xi_y_, 1);
+  counters_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void Solid::compute_phi_from_xi() {

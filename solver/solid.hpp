@@ -25,6 +25,7 @@ struct ExtrapolationCounters {
   long cells_filled = 0;
   long fallbacks = 0;
   long iterations = 0;  ///< PDE pseudo-time iterations (0 for least squares)
+  double seconds = 0.0; ///< wall time spent in the extrapolation kernels
 };
 
 struct SolidDiagnostics {
