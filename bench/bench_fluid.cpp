@@ -1,5 +1,6 @@
 // Benchmarks of the stateless fluid and solid-stress stencil kernels (Google Benchmark).
-// Thread count: OMP_NUM_THREADS. Grids N x N with N = 256 (fits in L2/L3) and 1024 (DRAM).
+// Thread count: OMP_NUM_THREADS. Grids N x N with N = 256 (0.5 MB per array: in cache) and
+// 1024 (8.4 MB per array: the 5-14 arrays of a kernel exceed a 32 MB L3).
 //
 //   AdvectionStage/N/S    one advect_rhs2 call (both momentum components: one RK-4 stage
 //                         right-hand side), S = 0 central, 1 Superbee

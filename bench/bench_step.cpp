@@ -1,7 +1,9 @@
 // Whole time steps of the solver (Google Benchmark). Thread count: OMP_NUM_THREADS.
 //
 //   WholeFluidStep/N   lid-driven cavity at Re = 1000 (scenes/lid_driven_cavity_re1000.toml:
-//                      central advection, multigrid V-cycles to 1e-8) on N x N cells
+//                      cfl 0.4, central advection, multigrid V-cycles to 1e-8) on N x N
+//                      cells; dt = min(0.4 dx / U_lid, 0.9 rho dx^2 / (6 mu)): advective
+//                      at N = 256, viscous-limited at N = 1024
 //   WholeSolidStep/N   one soft disc in a decaying Taylor-Green vortex
 //                      (scenes/disc_tgv.toml: LSQ extrapolation, conservative cell stress,
 //                      multigrid to 1e-9) on N x N cells
@@ -51,7 +53,7 @@ top = { type = "moving_wall", velocity = 1.0 }
 velocity = "zero"
 [time]
 end = 120.0
-cfl = 1.0
+cfl = 0.4
 [solver]
 advection = "central"
 poisson = "multigrid"

@@ -19,7 +19,8 @@
 #                 so a thread can move away from a core another job is using)
 #
 # Output: results/raw/bench_<threads>t.json (Google Benchmark JSON, aggregates only),
-#         results/raw/run_info.txt (machine, compiler, load averages, command line),
+#         results/raw/run_info.txt (machine, compiler, command line),
+#         results/raw/run_<threads>t.txt (date, load averages before/after, wall time),
 #         results/benchmarks.csv, results/benchmarks.md, results/*.png (bench/summarise.py).
 set -euo pipefail
 
@@ -81,11 +82,17 @@ CXX_PATH="$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$BUILD/CMakeCache.txt")"
   echo "command: QUICK=$QUICK REPS=$REPS MIN_TIME=$MIN_TIME THREADS='$THREADS' BENCH_FILTER='${BENCH_FILTER:-}' bash bench/run_benchmarks.sh"
   echo "omp_proc_bind: ${OMP_PROC_BIND:-unset}"
 } > "$RAW/run_info.txt"
+# (per thread count, so re-running THREADS=2 alone keeps the 1-thread record)
 
 for t in $THREADS; do
   echo "== $t thread(s): $REPS repetitions, min time $MIN_TIME s"
   wait_for_quiet
-  echo "load_before_${t}t: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$RAW/run_info.txt"
+  info="$RAW/run_${t}t.txt"
+  {
+    echo "date_${t}t: $(date -u '+%Y-%m-%d %H:%M:%S UTC')"
+    echo "reps_${t}t: $REPS x min_time $MIN_TIME s"
+    echo "load_before_${t}t: $(cut -d' ' -f1-3 /proc/loadavg)"
+  } > "$info"
   start=$(date +%s)
   OMP_NUM_THREADS="$t" "$BIN" \
     --benchmark_filter="$FILTER" \
@@ -94,8 +101,8 @@ for t in $THREADS; do
     --benchmark_min_time="$MIN_TIME" \
     --benchmark_format=json > "$RAW/bench_${t}t.json.tmp"
   mv "$RAW/bench_${t}t.json.tmp" "$RAW/bench_${t}t.json"
-  echo "load_after_${t}t: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$RAW/run_info.txt"
-  echo "wall_s_${t}t: $(( $(date +%s) - start ))" >> "$RAW/run_info.txt"
+  echo "load_after_${t}t: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$info"
+  echo "wall_s_${t}t: $(( $(date +%s) - start ))" >> "$info"
   echo "   done in $(( $(date +%s) - start )) s -> $RAW/bench_${t}t.json"
 done
 

@@ -131,7 +131,7 @@ def header_lines(info: dict, contexts: dict) -> list[str]:
         c = contexts[t]
         la = c.get("load_avg")
         la = ", ".join(f"{v:.2f}" for v in la) if la else "?"
-        line = f"{t} thread(s): load average at start {la}"
+        line = f"{t} thread(s): run {info.get(f'date_{t}t', '?')}, {info.get(f'reps_{t}t', '?')}, load average at start {la}"
         extra = [f"{w} {info[f'load_{w}_{t}t']}" for w in ("before", "after") if f"load_{w}_{t}t" in info]
         if extra:
             line += " (uptime " + "; ".join(extra) + ")"
@@ -308,7 +308,10 @@ def main():
         r["order"] = order[r["benchmark"]]
     rows.sort(key=sort_key)
     threads = sorted({r["threads"] for r in rows})
-    header = header_lines(read_info(os.path.join(a.raw, "run_info.txt")), contexts)
+    info = read_info(os.path.join(a.raw, "run_info.txt"))
+    for t in threads:
+        info.update(read_info(os.path.join(a.raw, f"run_{t}t.txt")))
+    header = header_lines(info, contexts)
     os.makedirs(a.out, exist_ok=True)
     write_csv(rows, os.path.join(a.out, "benchmarks.csv"), header)
     write_md(rows, os.path.join(a.out, "benchmarks.md"), header, threads)
