@@ -1,6 +1,7 @@
 // Benchmarks of the stateless fluid and solid-stress stencil kernels (Google Benchmark).
-// Thread count: OMP_NUM_THREADS. Grids N x N with N = 256 (0.5 MB per array: in cache) and
-// 1024 (8.4 MB per array: the 5-14 arrays of a kernel exceed a 32 MB L3).
+// Thread count: OMP_NUM_THREADS. Grids N x N with N = 128, 256 (0.13 / 0.5 MB per array: in
+// cache), 512 (2.1 MB per array: the 5-14 arrays of a kernel need 10-30 MB, about the 32 MB
+// L3), 1024 and 2048 (8.4 / 34 MB per array: from DRAM).
 //
 //   AdvectionStage/N/S    one advect_rhs2 call (both momentum components: one RK-4 stage
 //                         right-hand side), S = 0 central, 1 Superbee
@@ -11,8 +12,10 @@
 //   ProjectionFaces/N     face_accel + predict_face_velocity + face_divergence (step 5 of
 //                         Algorithm 1: the Poisson right-hand side from the cell velocity)
 //
-// Counters (per call, N^2 cells):
+// Counters (per call, N^2 cells; set by bench/bench_counters.hpp):
 //   cells_per_s     N^2 * iterations / wall time (kIsRate)
+//   GFlop/s         flops_per_cell * cells_per_s (roofline point: GFlop/s at
+//                   flops_per_cell / bytes_per_cell flop/byte)
 //   GB/s            bytes_per_cell * cells_per_s. bytes_per_cell is the compulsory memory
 //                   traffic under the assumption that neighbouring rows stay in cache: every
 //                   array the kernel reads or writes is counted once per cell, 8 bytes each
@@ -47,6 +50,7 @@
 
 #include <cmath>
 
+#include "bench/bench_counters.hpp"
 #include "kernels/advection.hpp"
 #include "kernels/projection.hpp"
 #include "kernels/solid_stress.hpp"
@@ -59,12 +63,7 @@ using namespace refmap;
 
 void set_counters(benchmark::State& state, double cells_per_iter, double bytes_per_cell,
                   double flops_per_cell) {
-  const double cells = cells_per_iter * double(state.iterations());
-  state.counters["cells_per_s"] = benchmark::Counter(cells, benchmark::Counter::kIsRate);
-  state.counters["GB/s"] =
-      benchmark::Counter(cells * bytes_per_cell * 1e-9, benchmark::Counter::kIsRate);
-  state.counters["flops_per_cell"] = flops_per_cell;
-  state.counters["threads"] = omp_get_max_threads();
+  bench::set_kernel_counters(state, cells_per_iter, bytes_per_cell, flops_per_cell);
 }
 
 /// Fills every value of f (ghosts included) with fn(i, j); the smooth fields below change
@@ -167,10 +166,18 @@ void BM_ProjectionFaces(benchmark::State& state) {
   set_counters(state, double(n) * n, 112, 26);
 }
 
+void grids(benchmark::internal::Benchmark* b) {
+  for (int n : {128, 256, 512, 1024, 2048}) b->Arg(n);
+  b->UseRealTime();
+}
+
 }  // namespace
 
-BENCHMARK(BM_Advection)->Name("AdvectionStage")->ArgsProduct({{256, 1024}, {0, 1}})->UseRealTime();
-BENCHMARK(BM_Viscous)->Name("ViscousForce")->Arg(256)->Arg(1024)->UseRealTime();
-BENCHMARK(BM_StressDivergence)->Name("StressDivergence")->Arg(256)->Arg(1024)->UseRealTime();
-BENCHMARK(BM_NeoHookean)->Name("NeoHookeanStress")->Arg(256)->Arg(1024)->UseRealTime();
-BENCHMARK(BM_ProjectionFaces)->Name("ProjectionFaces")->Arg(256)->Arg(1024)->UseRealTime();
+BENCHMARK(BM_Advection)
+    ->Name("AdvectionStage")
+    ->ArgsProduct({{128, 256, 512, 1024, 2048}, {0, 1}})
+    ->UseRealTime();
+BENCHMARK(BM_Viscous)->Name("ViscousForce")->Apply(grids);
+BENCHMARK(BM_StressDivergence)->Name("StressDivergence")->Apply(grids);
+BENCHMARK(BM_NeoHookean)->Name("NeoHookeanStress")->Apply(grids);
+BENCHMARK(BM_ProjectionFaces)->Name("ProjectionFaces")->Apply(grids);

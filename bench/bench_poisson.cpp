@@ -1,4 +1,5 @@
 // Poisson solver benchmarks (Google Benchmark). Thread count: OMP_NUM_THREADS.
+// Grids N x N, N = 128, 256, 512, 1024, 2048 (the problem of bench/poisson_problem.hpp).
 //
 //   PoissonSmoother/N         one red-black Gauss-Seidel sweep on the finest level (one pass)
 //   PoissonSmootherTwoSweeps/N  two RB-GS sweeps pipelined into one pass (walls in y);
@@ -8,24 +9,49 @@
 //   PoissonRestrict/N         fused residual + P^T restriction to the next level
 //   PoissonProlong/N          x_f += P x_c
 //   PoissonVCycle/N/R         one V(2,2) cycle (all levels), density ratio R
-//   PoissonSolve/<m>/N/R      the standard study problem (bench/poisson_problem.hpp) solved
-//                             from x = 0 to 1e-8 relative residual, m in {V, F, cg, mgpcg}
+//   PoissonSolve/<m>/N/R      the pressure solver study: the standard problem
+//                             standard_problem(N, R) (bench/poisson_problem.hpp) solved from
+//                             x = 0 to a relative residual ||r||_2 / ||rhs||_2 <= 1e-8 (rhs
+//                             projected to zero mean), m in {V, F, cg, mgpcg}: multigrid
+//                             V(2,2) / F(2,2) cycles, Jacobi-preconditioned CG, CG
+//                             preconditioned by one V-cycle. N = 128 ... 2048, R = 1, 10,
+//                             1000; plain CG only up to N = 512 (its iteration count grows
+//                             like N, so 1024^2 and 2048^2 would dominate the run time).
+//                             The time is the whole solve (setup of the hierarchy excluded).
 //
-// Counters: cells_per_s = finest cells processed per second (per sweep / cycle / solve);
-// GB/s = bytes_per_cell * cells_per_s with bytes_per_cell the compulsory DRAM traffic of the
+// Kernel counters (bench/bench_counters.hpp): cells_per_s = finest cells processed per
+// second (per sweep / cycle); GB/s = bytes_per_cell * cells_per_s; GFlop/s =
+// flops_per_cell * cells_per_s. bytes_per_cell is the compulsory DRAM traffic of the
 // kernel under the assumption that the neighbouring rows stay in cache (one read of every
-// input array and one write of every output array per cell, write-allocate not counted,
-// face arrays counted as one value per cell):
+// input array and one write of every output array per cell, 8 B each, write-allocate not
+// counted, face arrays counted as one value per cell). flops_per_cell counts add, sub and
+// mul from the source loops in kernels/multigrid.cpp (an FMA counts as 2):
 //   RB-GS sweep   reads x, f, tx, ty, invd, writes x             = 6 x 8 = 48 B/cell
 //                 (two pipelined sweeps: the same 48 B/cell for both = 24 B/cell/sweep)
-//   Jacobi sweep  same arrays                                    = 48 B/cell
+//                 g = (4 mul + 3 add + 1 sub) * invd (1 mul); x += omega (g - x)
+//                 (sub, mul, add)                                = 12 flop/cell
+//   Jacobi sweep  same arrays, same arithmetic                    = 48 B, 12 flop/cell
 //   residual      reads x, f, tx, ty, writes r                   = 5 x 8 = 40 B/cell
+//                 4 differences, 4 mul, 3 add, 1 sub, r^2 sum (2) = 14 flop/cell
 //   restrict      reads x, f, tx, ty, writes coarse f (1/4)      = 34 B/cell
+//                 residual 12, x-restriction (2 add, 2 mul, 1 add per coarse value, half
+//                 a value per fine cell) 2.5, y-restriction (4 fine rows x (mul, add) per
+//                 coarse cell, a quarter per fine cell) 2          = 16.5 flop/cell
 //   prolong       reads and writes x_f, reads coarse x (1/4)     = 18 B/cell
-//   V-cycle       V(2,2) as the solver runs it: 2 pre-sweeps in one pass (48), restrict
-//                 (34), prolong (18), 2 post-sweeps in one pass with the convergence
-//                 residual fused (48), x 4/3 for the coarser levels: 148 * 4/3 ~ 200 B/cell
+//                 y-interpolation (2 mul, 1 add per coarse value, half per fine cell) 1.5,
+//                 x-interpolation 0.75 t (0.5) + (mul, add, add) 3 = 5 flop/cell
+//   V-cycle       V(2,2) as the solver runs it: 2 pre-sweeps in one pass (48 B, 24 flop),
+//                 restrict (34 B, 16.5), prolong (18 B, 5), 2 post-sweeps in one pass with
+//                 the convergence residual fused (48 B, 24 + 14), x 4/3 for the coarser
+//                 levels: 148 * 4/3 ~ 200 B/cell, 83.5 * 4/3 ~ 111 flop/cell
 //                 (an estimate; the periodic-y path needs one pass per sweep)
+//
+// Solver counters (PoissonSolve): iterations (cycles / CG steps), rel_residual (the
+// solver's final ||r||_2 / ||rhs||_2), ref_residual (the same measured independently by
+// poisson_problem::reference_residual after the timed loop), conv_factor =
+// rel_residual^(1/iterations) (mean residual reduction per cycle / CG step, from 1 at
+// x = 0), ns_per_unknown = wall time of one solve / N^2 (flat in N for an optimal solver),
+// cells_per_s, threads.
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
@@ -33,6 +59,7 @@
 #include <memory>
 #include <string>
 
+#include "bench/bench_counters.hpp"
 #include "bench/poisson_problem.hpp"
 #include "kernels/multigrid.hpp"
 #include "solver/poisson.hpp"
@@ -42,11 +69,9 @@ namespace {
 
 using namespace refmap;
 
-void set_counters(benchmark::State& state, double cells_per_iter, double bytes_per_cell) {
-  const double cells = cells_per_iter * double(state.iterations());
-  state.counters["cells_per_s"] = benchmark::Counter(cells, benchmark::Counter::kIsRate);
-  state.counters["GB/s"] =
-      benchmark::Counter(cells * bytes_per_cell * 1e-9, benchmark::Counter::kIsRate);
+void set_counters(benchmark::State& state, double cells_per_iter, double bytes_per_cell,
+                  double flops_per_cell) {
+  bench::set_kernel_counters(state, cells_per_iter, bytes_per_cell, flops_per_cell);
 }
 
 struct KernelSetup {
@@ -74,7 +99,7 @@ void BM_Smoother(benchmark::State& state) {
     mg::smooth_rbgs(s, k.x.view(), k.f.cview(), 1, false, 1.25);
     benchmark::ClobberMemory();
   }
-  set_counters(state, double(n) * n, 48);
+  set_counters(state, double(n) * n, 48, 12);
 }
 
 void BM_Smoother2(benchmark::State& state) {  // two sweeps fused into one pass
@@ -85,7 +110,7 @@ void BM_Smoother2(benchmark::State& state) {  // two sweeps fused into one pass
     mg::smooth_rbgs(s, k.x.view(), k.f.cview(), 2, false, 1.25);
     benchmark::ClobberMemory();
   }
-  set_counters(state, 2.0 * n * n, 24);  // per sweep: one pass (48 B/cell) for two sweeps
+  set_counters(state, 2.0 * n * n, 24, 12);  // per sweep: one pass (48 B/cell) for two sweeps
 }
 
 void BM_SmootherJacobi(benchmark::State& state) {
@@ -96,7 +121,7 @@ void BM_SmootherJacobi(benchmark::State& state) {
     mg::smooth_jacobi(s, k.x.view(), k.f.cview(), 1, 0.8, k.h.scratch());
     benchmark::ClobberMemory();
   }
-  set_counters(state, double(n) * n, 48);
+  set_counters(state, double(n) * n, 48, 12);
 }
 
 void BM_Residual(benchmark::State& state) {
@@ -108,7 +133,7 @@ void BM_Residual(benchmark::State& state) {
     benchmark::DoNotOptimize(mg::residual(s, k.x.cview(), k.f.cview(), r.view()));
     benchmark::ClobberMemory();
   }
-  set_counters(state, double(n) * n, 40);
+  set_counters(state, double(n) * n, 40, 14);
 }
 
 void BM_Restrict(benchmark::State& state) {
@@ -121,7 +146,7 @@ void BM_Restrict(benchmark::State& state) {
     mg::residual_restrict(s, k.x.cview(), k.f.cview(), L0.trx, L0.try_, fc.view(), k.h.scratch());
     benchmark::ClobberMemory();
   }
-  set_counters(state, double(n) * n, 34);
+  set_counters(state, double(n) * n, 34, 16.5);
 }
 
 void BM_Prolong(benchmark::State& state) {
@@ -135,7 +160,7 @@ void BM_Prolong(benchmark::State& state) {
     mg::prolong_add(s, L0.trx, L0.try_, xc.cview(), k.x.view(), k.h.scratch());
     benchmark::ClobberMemory();
   }
-  set_counters(state, double(n) * n, 18);
+  set_counters(state, double(n) * n, 18, 5);
 }
 
 void BM_VCycle(benchmark::State& state) {
@@ -165,63 +190,104 @@ void BM_VCycle(benchmark::State& state) {
     }
   }
   state.counters["levels"] = h.num_levels();
-  set_counters(state, double(n) * n, 200);
+  set_counters(state, double(n) * n, 200, 111);
+}
+
+/// The problem and solver of the last PoissonSolve case, kept across repetitions and
+/// across the four methods of one (N, R) (only one at a time, to bound memory).
+struct SolveCache {
+  int n = 0;
+  double ratio = 0;
+  std::unique_ptr<poisson_problem::Problem> p;
+  std::string method;
+  std::unique_ptr<PoissonSolver> solver;
+};
+
+SolveCache& solve_case(const std::string& method, int n, double ratio) {
+  static SolveCache c;
+  if (!c.p || c.n != n || c.ratio != ratio) {
+    c.solver.reset();
+    c.p.reset();
+    c.p = std::make_unique<poisson_problem::Problem>(poisson_problem::standard_problem(n, ratio));
+    c.n = n;
+    c.ratio = ratio;
+    c.method.clear();
+  }
+  if (!c.solver || c.method != method) {
+    PoissonOptions o;
+    o.tol = 1e-8;
+    o.max_iter = 100000;
+    if (method == "V" || method == "F") {
+      o.method = "multigrid";
+      o.cycle = method;
+    } else {
+      o.method = method;
+    }
+    c.solver.reset();
+    c.solver = make_poisson_solver(o);
+    c.solver->setup(c.p->op());
+    c.method = method;
+  }
+  return c;
 }
 
 void BM_Solve(benchmark::State& state, std::string method) {
   const int n = int(state.range(0));
   const double ratio = double(state.range(1));
-  poisson_problem::Problem p = poisson_problem::standard_problem(n, ratio);
-  PoissonOptions o;
-  o.tol = 1e-8;
-  o.max_iter = 100000;
-  if (method == "V" || method == "F") {
-    o.method = "multigrid";
-    o.cycle = method;
-  } else {
-    o.method = method;
-  }
-  auto solver = make_poisson_solver(o);
-  solver->setup(p.op());
+  SolveCache& c = solve_case(method, n, ratio);
   Field x(n, n);
   SolveStats st;
   for (auto _ : state) {
     state.PauseTiming();
     x.fill(0.0);
     state.ResumeTiming();
-    st = solver->solve(p.rhs, x);
+    st = c.solver->solve(c.p->rhs, x);
   }
   if (!st.converged) state.SkipWithError("did not converge");
+  const double cells = double(n) * n * double(state.iterations());
   state.counters["iterations"] = st.iterations;
   state.counters["rel_residual"] = st.rel_residual;
+  state.counters["ref_residual"] = poisson_problem::reference_residual(*c.p, x);
+  state.counters["conv_factor"] =
+      st.iterations > 0 && st.rel_residual > 0 ? std::pow(st.rel_residual, 1.0 / st.iterations)
+                                               : 0.0;
+  state.counters["ns_per_unknown"] = benchmark::Counter(
+      cells * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["cells_per_s"] = benchmark::Counter(cells, benchmark::Counter::kIsRate);
   state.counters["threads"] = omp_get_max_threads();
-  state.counters["cells_per_s"] =
-      benchmark::Counter(double(n) * n * double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-BENCHMARK(BM_Smoother)->Name("PoissonSmoother")->Arg(256)->Arg(1024)->UseRealTime();
-BENCHMARK(BM_Smoother2)->Name("PoissonSmootherTwoSweeps")->Arg(256)->Arg(1024)->UseRealTime();
-BENCHMARK(BM_SmootherJacobi)->Name("PoissonSmootherJacobi")->Arg(256)->Arg(1024)->UseRealTime();
-BENCHMARK(BM_Residual)->Name("PoissonResidual")->Arg(256)->Arg(1024)->UseRealTime();
-BENCHMARK(BM_Restrict)->Name("PoissonRestrict")->Arg(256)->Arg(1024)->UseRealTime();
-BENCHMARK(BM_Prolong)->Name("PoissonProlong")->Arg(256)->Arg(1024)->UseRealTime();
+void grids(benchmark::internal::Benchmark* b) {
+  for (int n : {128, 256, 512, 1024, 2048}) b->Arg(n);
+  b->UseRealTime();
+}
+
+BENCHMARK(BM_Smoother)->Name("PoissonSmoother")->Apply(grids);
+BENCHMARK(BM_Smoother2)->Name("PoissonSmootherTwoSweeps")->Apply(grids);
+BENCHMARK(BM_SmootherJacobi)->Name("PoissonSmootherJacobi")->Apply(grids);
+BENCHMARK(BM_Residual)->Name("PoissonResidual")->Apply(grids);
+BENCHMARK(BM_Restrict)->Name("PoissonRestrict")->Apply(grids);
+BENCHMARK(BM_Prolong)->Name("PoissonProlong")->Apply(grids);
 BENCHMARK(BM_VCycle)
     ->Name("PoissonVCycle")
-    ->Args({256, 1})
-    ->Args({256, 1000})
-    ->Args({1024, 1})
-    ->Args({1024, 1000})
+    ->ArgsProduct({{128, 256, 512, 1024, 2048}, {1, 1000}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+constexpr int kCgMaxN = 512;  // plain CG: O(N) iterations, only up to 512^2
+
 const int registered = [] {
-  for (const char* m : {"V", "F", "mgpcg", "cg"})
-    for (int n : {256, 1024})
-      for (int ratio : {1, 10, 1000})
-        benchmark::RegisterBenchmark(("PoissonSolve/" + std::string(m)).c_str(), BM_Solve, std::string(m))
+  // (N, R) outer so the cached problem is shared by the four methods
+  for (int n : {128, 256, 512, 1024, 2048})
+    for (int ratio : {1, 10, 1000})
+      for (const char* m : {"V", "F", "mgpcg", "cg"}) {
+        if (std::string(m) == "cg" && n > kCgMaxN) continue;
+        benchmark::RegisterBenchmark(("PoissonSolve/" + std::string(m)).c_str(), BM_Solve,
+                                     std::string(m))
             ->Args({n, ratio})
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime();
+      }
   return 0;
 }();
 

@@ -2,14 +2,15 @@
 # Builds refmap_bench (Release, in build-bench/) and runs the whole benchmark suite with
 # 1 and 2 OpenMP threads, then summarises the medians into results/.
 #
-#   bash bench/run_benchmarks.sh              # full run (5 repetitions, 256^2 and 1024^2)
-#   QUICK=1 bash bench/run_benchmarks.sh      # 2 repetitions, only the 256^2 cases (and the
-#                                             # 100^2 extrapolation cases), for a smoke test
+#   bash bench/run_benchmarks.sh              # full run (5 repetitions, grids 128^2..2048^2)
+#   QUICK=1 bash bench/run_benchmarks.sh      # 2 repetitions, only the 128^2 and 256^2 cases,
+#                                             # the 100^2 extrapolation cases (bands 3, 5, 8)
+#                                             # and the machine limits, for a smoke test
 #   BENCH_FILTER='Poisson|Advection' bash bench/run_benchmarks.sh   # a subset (regex)
 #
 # Environment knobs (all optional):
 #   BENCH_FILTER  Google Benchmark regex of the benchmarks to run (default: all)
-#   QUICK=1       fewer repetitions, 256^2 grids only (intersected with BENCH_FILTER)
+#   QUICK=1       fewer repetitions, small grids only (intersected with BENCH_FILTER)
 #   REPS          repetitions per benchmark (default 5, QUICK 2); the median is reported
 #   MIN_TIME      --benchmark_min_time in seconds per repetition (default 0.2)
 #   THREADS       thread counts to run (default "1 2")
@@ -33,8 +34,14 @@ MIN_TIME="${MIN_TIME:-0.2}"
 THREADS="${THREADS:-1 2}"
 MAX_LOAD="${MAX_LOAD:-1.2}"
 FILTER="${BENCH_FILTER:-.}"
-PYTHON="${PYTHON:-/usr/bin/python3}"
-[[ -x "$PYTHON" ]] || PYTHON=python3
+if [[ -z "${PYTHON:-}" ]]; then
+  # the first python3 that has matplotlib (summarise.py writes the tables without it, but
+  # no plots)
+  for p in python3 /usr/bin/python3; do
+    if command -v "$p" >/dev/null && "$p" -c 'import matplotlib' 2>/dev/null; then PYTHON="$p"; break; fi
+  done
+  PYTHON="${PYTHON:-python3}"
+fi
 
 BUILD=build-bench
 BIN="$BUILD/bench/refmap_bench"
@@ -46,10 +53,12 @@ cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$BUILD" -j2 --target refmap_bench
 
 if [[ "$QUICK" == 1 ]]; then
-  # intersect the filter with the small grids: list the selected names, keep the 256^2
-  # cases (and the 100^2 extrapolation/fast-marching cases), pass them as an exact regex
+  # intersect the filter with the small grids: list the selected names, keep the machine
+  # limits (Machine*), the 128^2 and 256^2 cases and the 100^2 extrapolation/fast-marching
+  # cases (extrapolation: bands 3, 5, 8 only), pass them as an exact regex
   mapfile -t names < <("$BIN" --benchmark_list_tests=true --benchmark_filter="$FILTER" |
-                       grep -E '/(256|100)(/|$)' || true)
+                       grep -E '^Machine|/(128|256)(/|$)|^(Extrapolate[A-Za-z]*|FastMarching)/100/' |
+                       grep -Ev '^Extrapolate[A-Za-z]*/100/[4679](/|$)' || true)
   if [[ ${#names[@]} -eq 0 ]]; then
     echo "run_benchmarks.sh: QUICK=1 with BENCH_FILTER='$FILTER' selects nothing" >&2
     exit 1
