@@ -9,8 +9,9 @@
 //                             (AVX-512 / AVX2+FMA intrinsics as -march=native allows, scalar
 //                             std::fma otherwise)
 //
-// The arrays are 64 MiB each (8 Mi doubles): 2 x 64 MiB (Copy) and 3 x 64 MiB (Triad) are
-// 4 and 6 times the 32 MiB L3 of the reference machine, so the loops run from DRAM. They are
+// The arrays are 128 MiB each (16 Mi doubles): 2 x 128 MiB (Copy) and 3 x 128 MiB (Triad)
+// are 8 and 12 times a 32 MiB L3 (the AMD EPYC these VMs ran on) and 5 and 8 times the
+// 48 MiB L3 of the Intel Xeon they also run on, so the loops run from DRAM. They are
 // allocated once (64-byte aligned) and first touched in parallel with the same static
 // schedule as the timed loops.
 //
@@ -44,7 +45,7 @@ namespace {
 
 constexpr std::size_t kMiB = 1024 * 1024;
 
-/// Three arrays of `bytes` bytes each, kept across benchmark runs (allocation and first
+/// Three arrays of `elems` doubles each, kept across benchmark runs (allocation and first
 /// touch are not timed).
 struct Arrays {
   std::size_t n = 0;
@@ -208,6 +209,6 @@ void BM_FmaPeak(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_StreamCopy)->Name("MachineStreamCopy")->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_StreamTriad)->Name("MachineStreamTriad")->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_StreamCopy)->Name("MachineStreamCopy")->Arg(128)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_StreamTriad)->Name("MachineStreamTriad")->Arg(128)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_FmaPeak)->Name("MachineFmaPeak")->Unit(benchmark::kMicrosecond)->UseRealTime();

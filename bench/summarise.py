@@ -366,8 +366,8 @@ def extra_md(rows, threads):
     lim = machine_limits(rows)
     if lim:
         out += ["", "## Machine limits (measured by `MachineStream*` and `MachineFmaPeak`)", "",
-                "STREAM-like loops over 64 MiB arrays (2 for Copy, 3 for Triad: 4-6 x the 32 MiB "
-                "L3). GB/s counts each array once per element (16 B Copy, 24 B Triad), "
+                "STREAM-like loops over arrays far larger than the last-level cache (size in MiB "
+                "per array in the benchmark name: 2 arrays for Copy, 3 for Triad). GB/s counts each array once per element (16 B Copy, 24 B Triad), "
                 "write-allocate NOT counted (the convention of the kernel figures); the "
                 "write-allocate column adds the read of the destination line (24 / 32 B), "
                 "which ordinary stores really cause. FMA peak: independent FMA chains in "
