@@ -81,6 +81,7 @@ wait_for_quiet() {
   echo "   load average still $(load1) after 5 minutes: running anyway"
 }
 
+git update-index -q --refresh >/dev/null 2>&1 || true  # (touched but unchanged files are not "changes")
 CXX_PATH="$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$BUILD/CMakeCache.txt")"
 {
   echo "date: $(date -u '+%Y-%m-%d %H:%M:%S UTC')"
