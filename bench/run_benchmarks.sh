@@ -81,14 +81,18 @@ wait_for_quiet() {
   echo "   load average still $(load1) after 5 minutes: running anyway"
 }
 
-git update-index -q --refresh >/dev/null 2>&1 || true  # (touched but unchanged files are not "changes")
+# source revision, recorded before anything in results/ is rewritten; results/ itself (the
+# previous run's outputs) does not count as a source change
+git update-index -q --refresh >/dev/null 2>&1 || true
+GIT_REV="$(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+git diff --quiet HEAD -- . ':(exclude)results' 2>/dev/null || GIT_REV="$GIT_REV (with uncommitted changes)"
 CXX_PATH="$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$BUILD/CMakeCache.txt")"
 {
   echo "date: $(date -u '+%Y-%m-%d %H:%M:%S UTC')"
   echo "host_model: $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1)"
   echo "cores: $(nproc)"
   echo "compiler: $("${CXX_PATH:-c++}" --version | head -1)"
-  echo "git: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet 2>/dev/null || echo ' (with uncommitted changes)')"
+  echo "git: $GIT_REV"
   echo "command: QUICK=$QUICK REPS=$REPS MIN_TIME=$MIN_TIME THREADS='$THREADS' BENCH_FILTER='${BENCH_FILTER:-}' bash bench/run_benchmarks.sh"
   echo "omp_proc_bind: ${OMP_PROC_BIND:-unset}"
 } > "$RAW/run_info.txt"
