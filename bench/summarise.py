@@ -6,7 +6,8 @@ Reads <raw>/bench_<threads>t.json (run with --benchmark_repetitions=k
 aggregate of every benchmark, and writes
 
   <out>/benchmarks.csv   benchmark, grid, param, threads, median_time_us, cells_per_s,
-                         GB_per_s (header comment: CPU model, cores, compiler, date, load)
+                         GB_per_s, GFlop_per_s, bytes_per_cell, flops_per_cell (header
+                         comment: CPU model, cores, compiler, date, load)
   <out>/benchmarks.md    markdown tables of the medians with the 2-thread/1-thread speed-up
   <out>/speedup.png      2-thread/1-thread speed-up of every benchmark at its largest grid
   <out>/bandwidth.png    GB/s of the stencil kernels (1 and 2 threads, every grid)
