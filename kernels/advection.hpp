@@ -19,10 +19,19 @@ inline double superbee(double r) {
 
 /// Limited face value between upwind cell qu (with its own upwind neighbour quu) and
 /// downwind cell qd: q_f = qu + 0.5 psi(r) (qd - qu), r = (qu - quu) / (qd - qu).
+/// Evaluated without the division and without branches (so the loops vectorise): with
+/// d = qd - qu, s = sign(d) and e = s (qu - quu), psi(r) d = s max(0, min(2e, |d|), min(e, 2|d|))
+/// (both minima are <= 0 when e <= 0, and the expression is 0 when d = 0).
 inline double superbee_face(double quu, double qu, double qd) {
   const double d = qd - qu;
-  if (d == 0.0) return qu;
-  return qu + 0.5 * superbee((qu - quu) / d) * d;
+  const double s = __builtin_copysign(1.0, d);
+  const double ad = s * d;
+  const double e = s * (qu - quu);
+  const double m1 = 2.0 * e < ad ? 2.0 * e : ad;
+  const double m2 = e < 2.0 * ad ? e : 2.0 * ad;
+  double m = m1 > m2 ? m1 : m2;
+  m = m > 0.0 ? m : 0.0;
+  return qu + 0.5 * s * m;
 }
 
 /// rhs_a = -div(u_f a), rhs_b = -div(u_f b) for two quantities sharing the face

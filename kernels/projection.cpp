@@ -8,7 +8,10 @@ namespace refmap {
 
 void face_beta(CView rho, View bx, View by, int nx, int ny, FaceBoundary fb) {
   parallel_rows(0, ny, [&](int j) {
-    for (int i = 1; i < nx; ++i) bx(i, j) = 2.0 / (rho(i - 1, j) + rho(i, j));
+    const double* __restrict r = &rho(0, j);
+    double* __restrict b = &bx(0, j);
+#pragma omp simd
+    for (int i = 1; i < nx; ++i) b[i] = 2.0 / (r[i - 1] + r[i]);
     const double edge = fb.periodic_x ? 2.0 / (rho(-1, j) + rho(0, j)) : 0.0;
     bx(0, j) = edge;
     bx(nx, j) = edge;
@@ -19,7 +22,11 @@ void face_beta(CView rho, View bx, View by, int nx, int ny, FaceBoundary fb) {
       for (int i = 0; i < nx; ++i) by(i, j) = 0.0;
     } else {
       const int jj = (j == ny) ? 0 : j;  // periodic: face ny repeats face 0
-      for (int i = 0; i < nx; ++i) by(i, j) = 2.0 / (rho(i, jj - 1) + rho(i, jj));
+      const double* __restrict rs = &rho(0, jj - 1);
+      const double* __restrict rn = &rho(0, jj);
+      double* __restrict b = &by(0, j);
+#pragma omp simd
+      for (int i = 0; i < nx; ++i) b[i] = 2.0 / (rs[i] + rn[i]);
     }
   });
 }
@@ -28,9 +35,15 @@ void face_accel(CView p, CView bx, CView by, View gx_f, View gy_f, int nx, int n
                 double gx, double gy, double rho_ref, FaceBoundary fb) {
   const double inv = 1.0 / dx;
   parallel_rows(0, ny, [&](int j) {
-    for (int i = 1; i < nx; ++i) {
-      const double b = bx(i, j);
-      gx_f(i, j) = b * (p(i, j) - p(i - 1, j)) * inv - gx * (1.0 - rho_ref * b);
+    {
+      const double* __restrict br = &bx(0, j);
+      const double* __restrict pr = &p(0, j);
+      double* __restrict g = &gx_f(0, j);
+#pragma omp simd
+      for (int i = 1; i < nx; ++i) {
+        const double b = br[i];
+        g[i] = b * (pr[i] - pr[i - 1]) * inv - gx * (1.0 - rho_ref * b);
+      }
     }
     double edge = 0.0;
     if (fb.periodic_x) {
@@ -46,9 +59,14 @@ void face_accel(CView p, CView bx, CView by, View gx_f, View gy_f, int nx, int n
       for (int i = 0; i < nx; ++i) gy_f(i, j) = 0.0;
     } else {
       const int jj = (j == ny) ? 0 : j;
+      const double* __restrict br = &by(0, jj);
+      const double* __restrict pn = &p(0, jj);
+      const double* __restrict ps = &p(0, jj - 1);
+      double* __restrict g = &gy_f(0, j);
+#pragma omp simd
       for (int i = 0; i < nx; ++i) {
-        const double b = by(i, jj);
-        gy_f(i, j) = b * (p(i, jj) - p(i, jj - 1)) * inv - gy * (1.0 - rho_ref * b);
+        const double b = br[i];
+        g[i] = b * (pn[i] - ps[i]) * inv - gy * (1.0 - rho_ref * b);
       }
     }
   });
@@ -57,7 +75,13 @@ void face_accel(CView p, CView bx, CView by, View gx_f, View gy_f, int nx, int n
 void predict_face_velocity(CView u, CView v, CView gx_f, CView gy_f, View uf, View vf, int nx,
                            int ny, double dt, FaceBoundary fb) {
   parallel_rows(0, ny, [&](int j) {
-    for (int i = 1; i < nx; ++i) uf(i, j) = 0.5 * (u(i - 1, j) + u(i, j)) - dt * gx_f(i, j);
+    {
+      const double* __restrict ur = &u(0, j);
+      const double* __restrict g = &gx_f(0, j);
+      double* __restrict f = &uf(0, j);
+#pragma omp simd
+      for (int i = 1; i < nx; ++i) f[i] = 0.5 * (ur[i - 1] + ur[i]) - dt * g[i];
+    }
     const double edge = fb.periodic_x ? 0.5 * (u(-1, j) + u(0, j)) - dt * gx_f(0, j) : 0.0;
     uf(0, j) = edge;
     uf(nx, j) = edge;
@@ -68,7 +92,12 @@ void predict_face_velocity(CView u, CView v, CView gx_f, CView gy_f, View uf, Vi
       for (int i = 0; i < nx; ++i) vf(i, j) = 0.0;
     } else {
       const int jj = (j == ny) ? 0 : j;
-      for (int i = 0; i < nx; ++i) vf(i, j) = 0.5 * (v(i, jj - 1) + v(i, jj)) - dt * gy_f(i, jj);
+      const double* __restrict vs = &v(0, jj - 1);
+      const double* __restrict vn = &v(0, jj);
+      const double* __restrict g = &gy_f(0, jj);
+      double* __restrict f = &vf(0, j);
+#pragma omp simd
+      for (int i = 0; i < nx; ++i) f[i] = 0.5 * (vs[i] + vn[i]) - dt * g[i];
     }
   });
 }
@@ -102,7 +131,13 @@ void correct_face_velocity(View uf, View vf, CView dp, CView bx, CView by, int n
                            double dx, double dt, FaceBoundary fb) {
   const double c = dt / dx;
   parallel_rows(0, ny, [&](int j) {
-    for (int i = 1; i < nx; ++i) uf(i, j) -= c * bx(i, j) * (dp(i, j) - dp(i - 1, j));
+    {
+      const double* __restrict b = &bx(0, j);
+      const double* __restrict d = &dp(0, j);
+      double* __restrict f = &uf(0, j);
+#pragma omp simd
+      for (int i = 1; i < nx; ++i) f[i] -= c * b[i] * (d[i] - d[i - 1]);
+    }
     if (fb.periodic_x) {
       const double e = uf(0, j) - c * bx(0, j) * (dp(0, j) - dp(-1, j));
       uf(0, j) = e;
@@ -113,7 +148,12 @@ void correct_face_velocity(View uf, View vf, CView dp, CView bx, CView by, int n
     const bool boundary = (j == 0 || j == ny);
     if (boundary && !fb.periodic_y) return;
     if (j == ny) return;  // periodic: copied from face 0 below
-    for (int i = 0; i < nx; ++i) vf(i, j) -= c * by(i, j) * (dp(i, j) - dp(i, j - 1));
+    const double* __restrict b = &by(0, j);
+    const double* __restrict dn = &dp(0, j);
+    const double* __restrict ds = &dp(0, j - 1);
+    double* __restrict f = &vf(0, j);
+#pragma omp simd
+    for (int i = 0; i < nx; ++i) f[i] -= c * b[i] * (dn[i] - ds[i]);
   });
   if (fb.periodic_y)
     for (int i = 0; i < nx; ++i) vf(i, ny) = vf(i, 0);

@@ -63,10 +63,20 @@ void blend_stress_divergence(CView sxx, CView sxy, CView syy, CView phi, int ni,
 void add_stress_divergence(CView sxx, CView sxy, CView syy, View fx, View fy, int nx, int ny,
                            double dx) {
   const double inv2 = 0.5 / dx;
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, [=](int j) {
+    // restrict-qualified row pointers so that the loop vectorises
+    const double* __restrict xx = &sxx(0, j);
+    const double* __restrict xys = &sxy(0, j - 1);
+    const double* __restrict xyc = &sxy(0, j);
+    const double* __restrict xyn = &sxy(0, j + 1);
+    const double* __restrict yys = &syy(0, j - 1);
+    const double* __restrict yyn = &syy(0, j + 1);
+    double* __restrict fxr = &fx(0, j);
+    double* __restrict fyr = &fy(0, j);
+#pragma omp simd
     for (int i = 0; i < nx; ++i) {
-      fx(i, j) += (sxx(i + 1, j) - sxx(i - 1, j) + sxy(i, j + 1) - sxy(i, j - 1)) * inv2;
-      fy(i, j) += (sxy(i + 1, j) - sxy(i - 1, j) + syy(i, j + 1) - syy(i, j - 1)) * inv2;
+      fxr[i] += (xx[i + 1] - xx[i - 1] + xyn[i] - xys[i]) * inv2;
+      fyr[i] += (xyc[i + 1] - xyc[i - 1] + yyn[i] - yys[i]) * inv2;
     }
   });
 }

@@ -7,27 +7,40 @@ namespace refmap {
 void viscous_force(CView u, CView v, CView mu, View fx, View fy, int nx, int ny, double dx) {
   const double inv = 1.0 / dx;
   const double inv2 = inv * inv;
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, [=](int j) {
+    // restrict-qualified row pointers so that the loop vectorises
+    const double* __restrict us = &u(0, j - 1);
+    const double* __restrict uc = &u(0, j);
+    const double* __restrict un = &u(0, j + 1);
+    const double* __restrict vs = &v(0, j - 1);
+    const double* __restrict vc = &v(0, j);
+    const double* __restrict vn = &v(0, j + 1);
+    const double* __restrict ms_ = &mu(0, j - 1);
+    const double* __restrict mc = &mu(0, j);
+    const double* __restrict mn_ = &mu(0, j + 1);
+    double* __restrict fxr = &fx(0, j);
+    double* __restrict fyr = &fy(0, j);
+#pragma omp simd
     for (int i = 0; i < nx; ++i) {
       // face viscosities
-      const double mw = 0.5 * (mu(i - 1, j) + mu(i, j)), me = 0.5 * (mu(i, j) + mu(i + 1, j));
-      const double ms = 0.5 * (mu(i, j - 1) + mu(i, j)), mn = 0.5 * (mu(i, j) + mu(i, j + 1));
+      const double mw = 0.5 * (mc[i - 1] + mc[i]), me = 0.5 * (mc[i] + mc[i + 1]);
+      const double ms = 0.5 * (ms_[i] + mc[i]), mn = 0.5 * (mc[i] + mn_[i]);
       // x-momentum: d/dx(2 mu u_x) + d/dy(mu (u_y + v_x))
-      const double txx_e = 2.0 * me * (u(i + 1, j) - u(i, j));
-      const double txx_w = 2.0 * mw * (u(i, j) - u(i - 1, j));
-      const double vx_n = 0.25 * (v(i + 1, j + 1) - v(i - 1, j + 1) + v(i + 1, j) - v(i - 1, j));
-      const double vx_s = 0.25 * (v(i + 1, j) - v(i - 1, j) + v(i + 1, j - 1) - v(i - 1, j - 1));
-      const double txy_n = mn * (u(i, j + 1) - u(i, j) + vx_n);
-      const double txy_s = ms * (u(i, j) - u(i, j - 1) + vx_s);
-      fx(i, j) = (txx_e - txx_w + txy_n - txy_s) * inv2;
+      const double txx_e = 2.0 * me * (uc[i + 1] - uc[i]);
+      const double txx_w = 2.0 * mw * (uc[i] - uc[i - 1]);
+      const double vx_n = 0.25 * (vn[i + 1] - vn[i - 1] + vc[i + 1] - vc[i - 1]);
+      const double vx_s = 0.25 * (vc[i + 1] - vc[i - 1] + vs[i + 1] - vs[i - 1]);
+      const double txy_n = mn * (un[i] - uc[i] + vx_n);
+      const double txy_s = ms * (uc[i] - us[i] + vx_s);
+      fxr[i] = (txx_e - txx_w + txy_n - txy_s) * inv2;
       // y-momentum: d/dx(mu (v_x + u_y)) + d/dy(2 mu v_y)
-      const double uy_e = 0.25 * (u(i + 1, j + 1) - u(i + 1, j - 1) + u(i, j + 1) - u(i, j - 1));
-      const double uy_w = 0.25 * (u(i, j + 1) - u(i, j - 1) + u(i - 1, j + 1) - u(i - 1, j - 1));
-      const double tyx_e = me * (v(i + 1, j) - v(i, j) + uy_e);
-      const double tyx_w = mw * (v(i, j) - v(i - 1, j) + uy_w);
-      const double tyy_n = 2.0 * mn * (v(i, j + 1) - v(i, j));
-      const double tyy_s = 2.0 * ms * (v(i, j) - v(i, j - 1));
-      fy(i, j) = (tyx_e - tyx_w + tyy_n - tyy_s) * inv2;
+      const double uy_e = 0.25 * (un[i + 1] - us[i + 1] + un[i] - us[i]);
+      const double uy_w = 0.25 * (un[i] - us[i] + un[i - 1] - us[i - 1]);
+      const double tyx_e = me * (vc[i + 1] - vc[i] + uy_e);
+      const double tyx_w = mw * (vc[i] - vc[i - 1] + uy_w);
+      const double tyy_n = 2.0 * mn * (vn[i] - vc[i]);
+      const double tyy_s = 2.0 * ms * (vc[i] - vs[i]);
+      fyr[i] = (tyx_e - tyx_w + tyy_n - tyy_s) * inv2;
     }
   });
 }
