@@ -277,7 +277,27 @@ def plot_snapshots(series, args, outdir, title):
         fl = robust_range(fluid_data, symmetric, 99.0 if field == "vorticity" else 100.0)
         if field == "speed":
             fl = (0.0, fl[1])
-    sl = robust_range([s[np.isfinite(s)] for s in solid_data], True, 100.0) if has_solid else None
+    # solid stress: symmetric range clipped at the 99th percentile of |s| over the frames (a
+    # wall contact can make a few cells 10x larger than the rest); mu_s (tr b - 2) >= 0 only
+    # when det b = 1 exactly, so small negative values occur and a diverging map shows them
+    sl = robust_range([s[np.isfinite(s)] for s in solid_data], True, 99.0) if has_solid else None
+    if has_solid and args.solid_vmax:
+        sl = (-args.solid_vmax, args.solid_vmax)
+    cmap_s = "PuOr_r"
+    if args.vmax is not None:
+        fl = (-args.vmax, args.vmax) if symmetric else (0.0, args.vmax)
+    else:
+        fl = robust_range(fluid_data, symmetric, 99.0 if field == "vorticity" else 100.0)
+        if field == "speed":
+            fl = (0.0, fl[1])
+    sl, cmap_s = None, None
+    if has_solid:
+        sv = [s[np.isfinite(s)] for s in solid_data]
+        lo, hi = robust_range(sv, False, 100.0)
+        if lo >= -1e-3 * max(abs(hi), 1e-300):  # one-signed (mu_s (tr b - 2) >= 0): sequential
+            sl, cmap_s = (0.0, max(hi, 1e-300)), ("magma_r" if not symmetric else "viridis")
+        else:
+            sl, cmap_s = robust_range(sv, True, 100.0), "PuOr_r"
 
     n = len(frames)
     ncol = min(n, args.columns)
@@ -297,7 +317,7 @@ def plot_snapshots(series, args, outdir, title):
         im_f = ax.imshow(fluid_data[k], origin="lower", extent=fr.extent, cmap=cmap_f,
                          vmin=fl[0], vmax=fl[1], interpolation="nearest")
         if has_solid:
-            im_s = ax.imshow(solid_data[k], origin="lower", extent=fr.extent, cmap="PuOr_r",
+            im_s = ax.imshow(solid_data[k], origin="lower", extent=fr.extent, cmap=cmap_s,
                              vmin=sl[0], vmax=sl[1], interpolation="nearest")
             X, Y = fr.cell_centres()
             phi = fr.fields["phi"]
@@ -322,7 +342,7 @@ def plot_snapshots(series, args, outdir, title):
     cb.set_label(lab)
     if has_solid:
         cb2 = fig.colorbar(im_s, ax=axes, shrink=0.9 if nrow > 1 else 0.95, pad=0.02, aspect=30)
-        cb2.set_label(r"normal stress $(\sigma_{11}+\sigma_{22})/2$ (solid)")
+        cb2.set_label(r"normal stress $(\sigma_{11}+\sigma_{22})/2$ (solid)" + ("" if args.solid_vmax else ", clipped at 99th pct"))
     fig.suptitle(f"{title}: {f0.nx}x{f0.ny}", fontsize=11)
     out = os.path.join(outdir, f"snapshots_{field}.png")
     fig.savefig(out, dpi=args.dpi)
@@ -491,6 +511,7 @@ def main(argv=None):
     ap.add_argument("--field", default="vorticity",
                     help="fluid colour field: vorticity (default), speed, p, u, v, density, or any cell array")
     ap.add_argument("--vmax", type=float, help="fix the fluid colour range to [-vmax, vmax] (or [0, vmax])")
+    ap.add_argument("--solid-vmax", type=float, help="fix the solid stress colour range to [-v, v]")
     ap.add_argument("--columns", type=int, default=4, help="snapshot panels per row (default 4)")
     ap.add_argument("--reference-path", action="append", default=[], metavar="FILE[:LABEL]",
                     help="centroid path (CSV, first two columns x, y) to overlay; repeatable")
