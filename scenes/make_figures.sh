@@ -81,7 +81,7 @@ figure() {
   done
   local run="$OUT/$name" dest="$DEST/$name"
   rm -rf "$run"
-  mkdir -p "$dest"
+  mkdir -p "$dest" "$OUT"
   local cmd=("$REFMAP" run "$scene" --out "$run" --threads "$THREADS" --quiet "${sets[@]}")
   echo "make_figures: $name: ${nx}x${ny}: ${cmd[*]}"
   local t0 t1 rc
@@ -129,13 +129,17 @@ figure() {
 
 REFS="--reference-path tests/data/sugiyama2011_disc_centroid_path.csv:Sugiyama2011 --reference-path tests/data/kolahdouz2023_disc_centroid_path.csv:Kolahdouz2023"
 
-figure lid_driven_cavity_re1000 scenes/lid_driven_cavity_re1000.toml "--field speed --count 1"
+GHIA="--probe-reference u_vertical=tests/data/ghia1982_u_vertical.csv:y_exact:u_Re1000:Ghia1982 --probe-reference v_horizontal=tests/data/ghia1982_v_horizontal.csv:x_exact:v_Re1000:Ghia1982"
+
+figure lid_driven_cavity_re1000 scenes/lid_driven_cavity_re1000.toml "--field speed,p --count 1 $GHIA"
 figure zalesak scenes/zalesak.toml "--field speed --times 0,0.25,0.5,0.75,1 --columns 5"
 figure disc_tgv_conservative scenes/disc_tgv.toml "--field vorticity --times 0,0.5,1,1.5,2,3,4 --columns 4"
 figure disc_tgv_nonconservative scenes/disc_tgv.toml "--field vorticity --times 0,0.5,1,1.5,2,3,4 --columns 4" \
   --set solids.conservative=false
-figure couette_elastic scenes/couette_elastic.toml "--field u --times 0.4,1.2,2,2.8,4,4.8 --columns 6"
-figure soft_disc_cavity scenes/soft_disc_cavity.toml "--field vorticity --times 0,1,2,3,4,5,6,8 --columns 4 $REFS"
+figure couette_elastic scenes/couette_elastic.toml "--field u --times 0.4,1.2,2,2.8,4,4.8 --columns 6 --probe-reference u_profile=tests/data/couette_elastic_startup.csv:y:u_t4.8:exact"
+# to t = 20 (the scene stops at 8): the digitised Sugiyama path ends about there
+figure soft_disc_cavity scenes/soft_disc_cavity.toml "--field vorticity --times 0,1,2,4,5,6,8,12,16,20 --columns 5 $REFS" \
+  --set time.end=20
 figure two_solids_tgv scenes/two_solids_tgv.toml "--field vorticity --count 8"
 figure wall_microgravity scenes/wall_microgravity.toml "--field vorticity --count 8"
 figure bounce_stiff scenes/bounce_stiff.toml "--field vorticity --count 8"

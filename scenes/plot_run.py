@@ -19,7 +19,8 @@ optionally probe_*.csv and events.csv. Figures go to RUN_DIR/figures/ unless --o
 * solids.png             per solid: centroid path (with --reference-path overlays), area
                          change, and, when the columns exist, sigma_max, gap_solid, gap_wall;
                          restitution values from events.csv when present
-* probes.png             the probe_*.csv profiles (value along the probe)
+* probes.png             the probe_*.csv profiles (value along the probe), with reference
+                         points from --probe-reference (e.g. Ghia's centreline tables)
 * path_distance.txt      with --reference-path: distances between our centroid path and
                          each reference polyline (also printed)
 
@@ -137,8 +138,8 @@ class Frame:
         raise KeyError(name)
 
     def names(self):
-        n = list(self.fields)
-        if "velocity" in n:
+        n = [k for k, a in self.fields.items() if a.ndim == 2]
+        if "velocity" in self.fields:
             n += ["speed", "u", "v"]
         return n
 
@@ -230,7 +231,7 @@ def pick_frames(series, args):
     idx = []
     for w in want:
         k = int(np.argmin(np.abs(times - w)))
-        if abs(times[k] - w) > 1e-9 * max(1.0, abs(w)):
+        if args.times and not getattr(args, "quiet_pick", False) and abs(times[k] - w) > 1e-9 * max(1.0, abs(w)):
             note(f"t = {w:g}: nearest frame is at t = {times[k]:.6g}")
         if k not in idx:
             idx.append(k)
@@ -284,20 +285,6 @@ def plot_snapshots(series, args, outdir, title):
     if has_solid and args.solid_vmax:
         sl = (-args.solid_vmax, args.solid_vmax)
     cmap_s = "PuOr_r"
-    if args.vmax is not None:
-        fl = (-args.vmax, args.vmax) if symmetric else (0.0, args.vmax)
-    else:
-        fl = robust_range(fluid_data, symmetric, 99.0 if field == "vorticity" else 100.0)
-        if field == "speed":
-            fl = (0.0, fl[1])
-    sl, cmap_s = None, None
-    if has_solid:
-        sv = [s[np.isfinite(s)] for s in solid_data]
-        lo, hi = robust_range(sv, False, 100.0)
-        if lo >= -1e-3 * max(abs(hi), 1e-300):  # one-signed (mu_s (tr b - 2) >= 0): sequential
-            sl, cmap_s = (0.0, max(hi, 1e-300)), ("magma_r" if not symmetric else "viridis")
-        else:
-            sl, cmap_s = robust_range(sv, True, 100.0), "PuOr_r"
 
     n = len(frames)
     ncol = min(n, args.columns)
@@ -305,8 +292,12 @@ def plot_snapshots(series, args, outdir, title):
     lx = f0.extent[1] - f0.extent[0]
     ly = f0.extent[3] - f0.extent[2]
     aspect = ly / lx
-    pw = 3.2 if aspect >= 0.6 else 4.5
-    ph = min(max(pw * aspect, 1.2), 6.0)
+    if aspect > 2.0:  # tall strip (e.g. the Couette layer): narrow panels
+        ph = 5.0
+        pw = max(ph / aspect, 0.5) + 0.9
+    else:
+        pw = 3.2 if aspect >= 0.6 else 4.5
+        ph = min(max(pw * aspect, 1.2), 6.0)
     extra = 1.1 if has_solid else 0.6
     fig, axes = plt.subplots(nrow, ncol, figsize=(pw * ncol + extra + 0.4, ph * nrow + 0.9), squeeze=False,
                              layout="constrained")
@@ -470,7 +461,25 @@ def plot_solids(d, events, refs, outdir, title, dpi, domain):
     return out, distances
 
 
-def plot_probes(run, outdir, title, dpi):
+def parse_probe_refs(specs):
+    refs = {}
+    for spec in specs:
+        m = re.match(r"^(\w+)=(.+?):([^:]+):([^:]+)(?::([^:]+))?$", spec)
+        if not m:
+            fail(f"--probe-reference {spec}: expected PROBE=FILE:COORD:VALUE[:LABEL]")
+        probe, path, ccol, vcol, label = m.groups()
+        if not os.path.exists(path):
+            fail(f"--probe-reference: no such file: {path}")
+        t = read_table(path)
+        for c in (ccol, vcol):
+            if c not in t or not isinstance(t[c], np.ndarray):
+                fail(f"--probe-reference: {path} has no numeric column {c}")
+        refs.setdefault(probe, []).append((label or os.path.basename(path), t[ccol], t[vcol]))
+    return refs
+
+
+def plot_probes(run, outdir, title, dpi, refs=None):
+    refs = refs or {}
     files = sorted(glob.glob(os.path.join(run, "probe_*.csv")))
     if not files:
         return None
@@ -483,14 +492,22 @@ def plot_probes(run, outdir, title, dpi):
             continue
         x, y, v = p["x"], p["y"], p["value"]
         # plot against the coordinate that varies; a vertical probe as value(y) upright
-        if np.ptp(y) > np.ptp(x):
-            ax.plot(v, y)
-            ax.set_xlabel("value")
+        vertical = np.ptp(y) > np.ptp(x)
+        if vertical:
+            ax.plot(v, y, label="refmap")
+            ax.set_xlabel(name.split("_")[0] if "_" in name else "value")
             ax.set_ylabel("y")
         else:
-            ax.plot(x, v)
+            ax.plot(x, v, label="refmap")
             ax.set_xlabel("x")
-            ax.set_ylabel("value")
+            ax.set_ylabel(name.split("_")[0] if "_" in name else "value")
+        for lab, c, rv in refs.get(name, []):
+            if vertical:
+                ax.plot(rv, c, "o", mfc="none", ms=5, label=lab)
+            else:
+                ax.plot(c, rv, "o", mfc="none", ms=5, label=lab)
+        if name in refs:
+            ax.legend(fontsize=8)
         ax.set_title(name, fontsize=10)
         ax.grid(alpha=0.3)
     fig.suptitle(f"{title}: probes at the end of the run", fontsize=11)
@@ -509,12 +526,16 @@ def main(argv=None):
     g.add_argument("--times", help="comma-separated times of the snapshots (nearest frame)")
     g.add_argument("--count", type=int, default=4, help="number of evenly spaced snapshots (default 4)")
     ap.add_argument("--field", default="vorticity",
-                    help="fluid colour field: vorticity (default), speed, p, u, v, density, or any cell array")
+                    help="fluid colour field: vorticity (default), speed, p, u, v, density, or any cell array; "
+                         "several separated by commas give one PNG each")
     ap.add_argument("--vmax", type=float, help="fix the fluid colour range to [-vmax, vmax] (or [0, vmax])")
     ap.add_argument("--solid-vmax", type=float, help="fix the solid stress colour range to [-v, v]")
     ap.add_argument("--columns", type=int, default=4, help="snapshot panels per row (default 4)")
     ap.add_argument("--reference-path", action="append", default=[], metavar="FILE[:LABEL]",
                     help="centroid path (CSV, first two columns x, y) to overlay; repeatable")
+    ap.add_argument("--probe-reference", action="append", default=[], metavar="PROBE=FILE:COORD:VALUE[:LABEL]",
+                    help="overlay reference points on probe PROBE: columns COORD (position along x or y) and "
+                         "VALUE of the CSV FILE, e.g. u_vertical=tests/data/ghia1982_u_vertical.csv:y_exact:u_Re1000:Ghia")
     ap.add_argument("--title", help="figure title (default: the scene name)")
     ap.add_argument("--dpi", type=int, default=110)
     ap.add_argument("--no-snapshots", action="store_true", help="time series only")
@@ -540,7 +561,11 @@ def main(argv=None):
     written = []
     domain = None
     if series and not args.no_snapshots:
-        written.append(plot_snapshots(series, args, outdir, title))
+        for field in [f.strip() for f in args.field.split(",") if f.strip()]:
+            args_f = argparse.Namespace(**vars(args))
+            args_f.field = field
+            args.quiet_pick = True  # report the nearest-frame substitutions once
+            written.append(plot_snapshots(series, args_f, outdir, title))
     elif not series:
         note("no frames (frame_*.vti): no snapshots")
     if series:
@@ -575,7 +600,7 @@ def main(argv=None):
                 f.write("\n".join(lines) + "\n")
             print("\n".join(lines[3:]))
             written.append(txt)
-    written.append(plot_probes(run, outdir, title, args.dpi))
+    written.append(plot_probes(run, outdir, title, args.dpi, parse_probe_refs(args.probe_reference)))
     for w in written:
         if w:
             print(w)
