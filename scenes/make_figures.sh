@@ -4,7 +4,8 @@
 #
 #   bash scenes/make_figures.sh                 # every scene at its default resolution
 #   QUICK=1 bash scenes/make_figures.sh         # coarse quick runs (grids halved, shorter cavity)
-#   bash scenes/make_figures.sh zalesak disc_tgv   # only these figures (names as below)
+#   bash scenes/make_figures.sh zalesak disc_tgv_conservative   # only these figures (names below)
+#   PLOT_ONLY=1 bash scenes/make_figures.sh      # re-plot the existing runs in $OUT, no simulation
 #
 # Environment: REFMAP (binary, default build/refmap), THREADS (default 1), OUT (run
 # directories, default out/figures), DEST (PNGs, default results/figures), PYTHON (a python3
@@ -80,19 +81,30 @@ figure() {
     esac
   done
   local run="$OUT/$name" dest="$DEST/$name"
-  rm -rf "$run"
   mkdir -p "$dest" "$OUT"
   local cmd=("$REFMAP" run "$scene" --out "$run" --threads "$THREADS" --quiet "${sets[@]}")
-  echo "make_figures: $name: ${nx}x${ny}: ${cmd[*]}"
-  local t0 t1 rc
-  t0=$(date +%s.%N)
-  "${cmd[@]}" > "$run.log" 2>&1
-  rc=$?
-  t1=$(date +%s.%N)
-  local wall
-  wall=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }')
+  local t0 t1 rc wall rev
+  if [ "${PLOT_ONLY:-0}" = 1 ]; then
+    if [ ! -f "$run.status" ]; then
+      echo "make_figures: $name: PLOT_ONLY=1 but no earlier run in $run, skipped"
+      SUMMARY+=("$name: skipped (no run in $run)")
+      return 0
+    fi
+    read -r rc wall rev < "$run.status"
+    echo "make_figures: $name: re-plotting $run (${nx}x${ny})"
+  else
+    rm -rf "$run"
+    echo "make_figures: $name: ${nx}x${ny}: ${cmd[*]}"
+    t0=$(date +%s.%N)
+    "${cmd[@]}" > "$run.log" 2>&1
+    rc=$?
+    t1=$(date +%s.%N)
+    wall=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }')
+    rev="$(git rev-parse --short HEAD 2>/dev/null)$(git diff --quiet HEAD -- solver kernels "$scene" 2>/dev/null || echo '+dirty')"
+    echo "$rc $wall $rev" > "$run.status"
+  fi
   local status="completed"
-  if [ $rc -ne 0 ]; then
+  if [ "$rc" -ne 0 ]; then
     status="stopped early (exit $rc): $(grep -m1 -i 'error\|stopp\|non-finite' "$run.log" | head -c 300)"
     echo "make_figures: $name: $status"
     if [ ! -f "$run/diagnostics.csv" ]; then
@@ -105,7 +117,7 @@ figure() {
   t_last=$(tail -n 1 "$run/diagnostics.csv" | cut -d, -f2)
   rm -f "$dest"/*.png "$dest"/path_distance.txt
   # shellcheck disable=SC2086
-  local pcmd=("$PYTHON" scenes/plot_run.py "$run" --out "$dest" --dpi "$DPI" $plot_args)
+  local pcmd=("$PYTHON" scenes/plot_run.py "$run" --out "$dest" --dpi "$DPI" --title "$name" $plot_args)
   if ! "${pcmd[@]}" > "$run.plot.log" 2>&1; then
     cat "$run.plot.log" >&2
     FAILED=1
@@ -119,9 +131,9 @@ figure() {
     echo "run: ${cmd[*]}"
     echo "run status: $status; simulated to t = $t_last; wall time ${wall} s ($THREADS thread(s))"
     echo "plot: ${pcmd[*]}"
-    echo "git: $(git rev-parse --short HEAD 2>/dev/null)$(git diff --quiet HEAD -- solver kernels scenes 2>/dev/null || echo ' + uncommitted changes')"
-    echo "date: $(date -u '+%Y-%m-%d %H:%M UTC')"
-    echo "host: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
+    echo "git (solver at run time): $rev"
+    echo "date: $(date -u -r "$run/diagnostics.csv" '+%Y-%m-%d %H:%M UTC') (run finished)"
+    echo "host: $(nproc) cores, load at plotting $(cut -d' ' -f1-3 /proc/loadavg) (the machine was shared: wall times are upper bounds)"
     if [ -f "$dest/path_distance.txt" ]; then echo "centroid path distances:"; grep -v '^#' "$dest/path_distance.txt"; fi
   } > "$dest/RUN_INFO.txt"
   SUMMARY+=("$name: ${nx}x${ny}, t = $t_last, ${wall} s, $status -> $dest/")

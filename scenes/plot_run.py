@@ -221,6 +221,10 @@ FLUID_LABELS = {"vorticity": r"vorticity $\omega$", "speed": r"speed $|u|$", "p"
                 "u": "$u$", "v": "$v$", "density": r"density $\rho$", "phi": r"level set $\phi$"}
 
 
+# fields with wall-corner singularities (lid corners): colour range clipped at the 99th percentile
+CLIPPED = ("vorticity", "p")
+
+
 def pick_frames(series, args):
     times = np.array([t for t, _ in series])
     if args.times:
@@ -275,7 +279,7 @@ def plot_snapshots(series, args, outdir, title):
     if args.vmax is not None:
         fl = (-args.vmax, args.vmax) if symmetric else (0.0, args.vmax)
     else:
-        fl = robust_range(fluid_data, symmetric, 99.0 if field == "vorticity" else 100.0)
+        fl = robust_range(fluid_data, symmetric, 99.0 if field in CLIPPED else 100.0)
         if field == "speed":
             fl = (0.0, fl[1])
     # solid stress: symmetric range clipped at the 99th percentile of |s| over the frames (a
@@ -327,7 +331,7 @@ def plot_snapshots(series, args, outdir, title):
     lab = FLUID_LABELS.get(field, field)
     if has_solid:
         lab += " (fluid)"
-    if field == "vorticity" and args.vmax is None:
+    if field in CLIPPED and args.vmax is None:
         lab += ", clipped at 99th pct"
     cb = fig.colorbar(im_f, ax=axes, shrink=0.9 if nrow > 1 else 0.95, pad=0.01, aspect=30)
     cb.set_label(lab)
