@@ -4,46 +4,50 @@
 // the gap diagnostics and the contact / restitution event log.
 //
 // THE FORCE. Every solid i is pushed by a contact pressure p_c that depends only on the
-// distance s from its surface to the obstacle (another solid j, s = phi_j, or a wall,
-// s = distance of the cell centre to the wall):
+// distance s from the obstacle (another solid j: s = phi_j; a wall: s = distance of the
+// cell centre to the wall):
 //
 //     p_c(s) = P (1 - s/d)^3  for s < d,   0 for s >= d          (d = range * dx)
 //
-// and it acts as a surface traction -p_c n_i on i's boundary, spread over a thin layer just
-// inside i (h = 2 dx) with a smooth ramp chi_i(phi_i) = S(-phi_i / h), S(x) = x^2 (3 - 2x):
+// acting as a traction -p_c n_i on i's boundary, spread over a thin layer just inside i
+// (h = 2 dx) by the smooth ramp chi_i = S(-phi_i / h), S(x) = x^2 (3 - 2x) on [0, 1]:
 //
-//     f_i(x) = p_c(s(x)) grad chi_i = -P (1 - s/d)^3 S'(-phi_i/h)/h n_i,   n_i = grad phi_i/|grad phi_i|
+//     f_i = p_c(s) grad chi_i          (= -p_c S'/h n_i, n_i the outward normal of i)
 //
+// discretised on the faces, F_f = (mean of p_c over the two cells of the face) x
+// (difference of chi_i across it) / dx, and applied like gravity in the balanced-force face
+// accelerations of the projection (G_f -= F_f / rho_f, eqs. 5.3 and 5.7), so the part of
+// the force that is a gradient is cancelled exactly by the pressure instead of leaving a
+// collocated residual (a cell-centred version of the same force gained energy in contact).
 // Why this form:
-//  * it is the surface traction of a pressure field, so the total force on i is
-//    -(integral of p_c n_i over its surface) to O(dx^2) independently of h, and there is no
-//    large gradient part inside the solid for the projection to absorb (a body force
-//    -chi_i grad p_c has the same total but a steep gradient inside the solid which the
-//    collocated projection cancels only approximately);
-//  * it is normal to i's surface (no friction), zero beyond the range, C^2 at s = d, and it
-//    keeps growing (cubically) as the gap closes and for s < 0, so an approach is stopped
-//    before the zero level sets cross as long as P exceeds the dynamic pressure of the
-//    approach (hence the scaling of P below);
-//  * it acts only inside i (-h < phi_i < 0): it never pushes the other solid's material.
-//  * equal and opposite: for a pair the discrete totals F_ij (on i) and F_ji (on j) agree
+//  * it is the variation of the potential U = sum chi_i p_c(s) dx^2 (reported as
+//    contact_energy): with p_c fixed (a wall), sum_f F_f u_f = -dU/dt for chi advected by
+//    the face velocities, so the contact stores and returns energy instead of creating it;
+//  * it is normal to i's surface (no friction), zero beyond the range, C^2 at s = d, grows
+//    cubically as the gap closes and further for s < 0, so an approach is stopped before
+//    the zero level sets cross as long as P exceeds the dynamic pressure of the approach;
+//  * it acts only on i's own layer (-h < phi_i < 0 and the face next to it): it never
+//    pushes the other solid's material;
+//  * equal and opposite: for a pair, the discrete totals F_ij (on i) and F_ji (on j) agree
 //    with -each other only to discretisation accuracy; both are replaced by
-//    +-Fbar = +-(F_ij - F_ji)/2 by adding (Fbar - F_ij) c_i(x) / sum c_i to i's force density,
-//    c_i = the magnitude weights of i's own contact cells (and likewise for j). The
-//    correction stays in the same contact patch and the pair's total force is zero to
-//    round-off, so the contact cannot change the total momentum. If one of the two
-//    patches is empty (the other solid's surface not yet resolved on a cell inside the
-//    range) the pair exerts no force at that step.
+//    +-Fbar = +-(F_ij - F_ji)/2, per direction, by adding (Fbar - F_ij) w_f / sum w to each
+//    face of i's patch (w_f = |F_f|; likewise for j). The correction stays in the contact
+//    patch and the pair's total force is zero to round-off, so contact cannot change the
+//    total momentum. If one of the two patches is empty (the other solid's surface not
+//    yet resolved on a cell within range) the pair exerts no force at that step.
 //
-// THE STRENGTH is independent of the solids' stiffness: P = stiffness * rho_max * U^2,
+// THE STRENGTH does not depend on the solids' stiffness: P = stiffness * rho_max * U^2,
 // rho_max the largest density of the scene (fluid or solid) and U a velocity scale:
-// contact.velocity_scale if given, else the larger of the largest initial speed |u| on the
+// contact.velocity_scale if given, else the larger of the largest initial speed on the
 // grid and the free-fall speed sqrt(2 |g| L) over the domain extent L along g (if both are
-// 0: the domain width divided by the run time). The default stiffness 20 makes p_c(0) about
-// 40 times the stagnation pressure of the fastest approach the scene can produce.
+// 0: the domain width divided by the run time). The default stiffness 20 makes p_c(0) 40
+// times the stagnation pressure rho_max U^2 / 2 of the fastest approach the scene can
+// produce. (An earlier attempt scaled the strength with mu_s: the restitution of a bounce
+// then measured the contact law, not the solid.)
 //
-// THE TIME STEP. The contact layer is a spring of stiffness dp_c/ds = 3P/d (6P/d at a
-// penetration s = -d/ ... grows) acting on a layer of mass rho h per unit area: dt <= 0.5 /
-// omega with omega^2 = 2 * 3P / (d rho_min h) (factor 2: a margin for s < 0).
+// THE TIME STEP. The layer is a spring of stiffness dp_c/ds = 3P/d at s = 0 acting on a
+// layer of mass rho h per unit area, rho >= (rho_s + rho_f)/2 there: dt <= 0.5 / omega,
+// omega^2 = 2 * 3P / (d rho h) (the factor 2 is a margin for s < 0, where it stiffens).
 //
 // PERIODIC BOUNDARIES. Contact is computed on the global grid from the solids' windows.
 // A solid that spans a periodic direction has a wrapped window (its phi and normals are

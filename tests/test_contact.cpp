@@ -312,3 +312,30 @@ TEST(ContactWall, DISABLED_StifferSolidHasHigherRestitution) {
   const Bounce stiff = run_bounce("bounce_stiff.toml");
   EXPECT_GT(stiff.restitution, soft.restitution);
 }
+
+TEST(ContactScene, KeysAreValidatedWithOneLineErrors) {
+  auto message = [](const std::vector<std::string>& sets) {
+    try {
+      load_scene_string(kGapScene, "gaps.toml", sets);
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const Config def = load_scene_string(kGapScene, "gaps.toml");
+  EXPECT_TRUE(def.contact.enabled);
+  EXPECT_TRUE(def.contact.walls);
+  EXPECT_DOUBLE_EQ(def.contact.range, 2.5);
+  EXPECT_DOUBLE_EQ(def.contact.stiffness, 20.0);
+  const Config c = load_scene_string(kGapScene, "gaps.toml",
+                                     {"contact.range=3", "contact.stiffness=50", "contact.walls=false"});
+  EXPECT_DOUBLE_EQ(c.contact.range, 3.0);
+  EXPECT_DOUBLE_EQ(c.contact.stiffness, 50.0);
+  EXPECT_FALSE(c.contact.walls);
+  EXPECT_NE(message({"contact.range=6"}).find("contact.range: must be in (0, solids.band = 6)"), std::string::npos);
+  EXPECT_NE(message({"contact.range=0"}).find("contact.range"), std::string::npos);
+  EXPECT_NE(message({"contact.stiffness=-1"}).find("contact.stiffness: must be >= 0"), std::string::npos);
+  EXPECT_NE(message({"contact.velocity_scale=-1"}).find("contact.velocity_scale"), std::string::npos);
+  EXPECT_NE(message({"contact.stifness=1"}).find("contact.stifness: unknown key"), std::string::npos);
+  EXPECT_NE(message({"contact.enabled=1"}).find("contact.enabled: expected true or false"), std::string::npos);
+}
