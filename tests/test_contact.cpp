@@ -294,6 +294,7 @@ TEST(ContactWall, BounceUnderGravity) {
   const Bounce stiff = run_bounce("bounce_stiff.toml");
   EXPECT_EQ(soft.pressure, stiff.pressure);  // the contact law does not depend on mu_s
   for (const Bounce* b : {&soft, &stiff}) {
+    EXPECT_LT(b->min_gap, 2.5 / 48.0);  // the heavier solid fell under gravity onto the wall
     EXPECT_GT(b->restitution, 0.1);  // it bounced (the heavier solid fell, hit and came back)
     EXPECT_LT(b->restitution, 1.0);
     EXPECT_GE(b->min_gap, 0.0);
