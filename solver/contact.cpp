@@ -18,8 +18,8 @@ void side_geometry(const Grid& g, int side, int i, int j, double& dist, double& 
 }
 
 struct Contribution {
-  int gi, gj;        // the face: left (x) or bottom (y) face of cell (gi, gj)
-  double w, fx, fy;  // weight (for the momentum correction) and face force density
+  int gi, gj;  // the face: left (x) or bottom (y) face of cell (gi, gj)
+  double w, f; // weight (for the momentum correction) and normal face force density
 };
 
 }  // namespace
@@ -91,7 +91,7 @@ void Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field
           const double pm = 0.5 * (p0 + pressure(dist(ni, nj)));
           if (pm <= 0.0) continue;
           const double f = pm * (c0 - c1) * inv_dx;
-          (dir == 0 ? xs : ys).push_back({gi, gj, std::abs(f), f, 0.0});
+          (dir == 0 ? xs : ys).push_back({gi, gj, std::abs(f), f});
         }
       }
   };
@@ -99,19 +99,19 @@ void Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field
   auto apply = [&](const std::vector<Contribution>& xs, const std::vector<Contribution>& ys,
                    double cx, double cy, double* tot) {
     for (const auto& c : xs) {
-      const double f = c.fx + cx * c.w;
+      const double f = c.f + cx * c.w;
       fxf(c.gi, c.gj) += f;
       tot[0] += f;
     }
     for (const auto& c : ys) {
-      const double f = c.fx + cy * c.w;
+      const double f = c.f + cy * c.w;
       fyf(c.gi, c.gj) += f;
       tot[1] += f;
     }
   };
   auto sums = [](const std::vector<Contribution>& v, double& F, double& W) {
     F = W = 0.0;
-    for (const auto& c : v) { F += c.fx; W += c.w; }
+    for (const auto& c : v) { F += c.f; W += c.w; }
   };
   const size_t n = solids.size();
   for (size_t ia = 0; ia < n; ++ia)
