@@ -3,7 +3,7 @@
 # Usage: bash scripts/demo.sh [SCENE.toml]   (from the repository root)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scene=${1:-scenes/lid_driven_cavity_re100.toml}
+scene=${1:-scenes/two_solids_tgv.toml}
 bash scripts/install-deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)" --target refmap

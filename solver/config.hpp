@@ -71,6 +71,15 @@ struct SolidsOptions {
   int pde_max_iter = 1000;
 };
 
+/// Solid-solid and solid-wall contact ([contact] table; see solver/contact.hpp).
+struct ContactOptions {
+  bool enabled = true;         ///< repulsion between solids and from walls (flow = "solve" only)
+  bool walls = true;           ///< also from the non-periodic sides
+  double range = 2.5;          ///< d_c in cells: the force acts once a gap is below d_c
+  double stiffness = 20.0;     ///< contact pressure at zero gap, in units of rho_max U^2
+  double velocity_scale = 0.0; ///< U; 0 = automatic (see solver/contact.hpp)
+};
+
 struct Config {
   std::string scene_path;  ///< the file it came from (for messages)
   std::string name;        ///< scene name (file stem unless set)
@@ -105,6 +114,7 @@ struct Config {
   // solids
   std::vector<SolidSpec> solids;
   SolidsOptions solid_opt;
+  ContactOptions contact;
   /// "solve" (Navier-Stokes) or "prescribed": the initial velocity field (an expression,
   /// possibly of t) is imposed at every step and no flow is solved (kinematic tests such
   /// as the Zalesak disk).

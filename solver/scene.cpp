@@ -757,6 +757,25 @@ void parse_solids_options(const Ctx& ctx, const Table& top, Config& cfg) {
   o.pde_max_iter = int(mi);
 }
 
+void parse_contact(const Ctx& ctx, const Table& top, Config& cfg) {
+  const toml::table* tp = top.table("contact", false);
+  if (!tp) return;
+  Table c(ctx, *tp, "contact");
+  c.allow({"enabled", "walls", "range", "stiffness", "velocity_scale"});
+  ContactOptions& o = cfg.contact;
+  o.enabled = c.boolean("enabled", o.enabled);
+  o.walls = c.boolean("walls", o.walls);
+  o.range = c.number("range", o.range);
+  c.require(o.range > 0 && o.range < cfg.solid_opt.band, "range",
+            "must be in (0, solids.band = " + fmt_num(cfg.solid_opt.band) +
+                ") cells (the level sets are only known within the band), got " + fmt_num(o.range));
+  o.stiffness = c.number("stiffness", o.stiffness);
+  c.require(o.stiffness >= 0, "stiffness", "must be >= 0, got " + fmt_num(o.stiffness));
+  o.velocity_scale = c.number("velocity_scale", o.velocity_scale);
+  c.require(o.velocity_scale >= 0, "velocity_scale",
+            "must be >= 0 (0 = automatic), got " + fmt_num(o.velocity_scale));
+}
+
 /// Keys of a [[solid]] that belong to the shape, per shape kind.
 struct ShapeKeys {
   const char* kind;
@@ -914,7 +933,7 @@ Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>&
   cfg.scene_path = ctx.file;
   Table top(ctx, root, "");
   top.allow({"name", "domain", "grid", "fluid", "boundary", "initial", "gravity", "time", "solver", "output", "probe",
-             "solids", "solid"});
+             "solids", "solid", "contact"});
 
   cfg.name = std::filesystem::path(ctx.file).stem().string();
   if (top.has("name")) {
@@ -936,6 +955,7 @@ Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>&
   parse_probes(ctx, top, cfg);
   parse_solids_options(ctx, top, cfg);  // after parse_solver: the solids need cfg.flow
   parse_solids(ctx, top, cfg);
+  parse_contact(ctx, top, cfg);  // after parse_solids_options: the range is checked against the band
   return cfg;
 }
 

@@ -51,6 +51,24 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
     for (Field* f : {&sxx_, &sxy_, &syy_}) f->resize(nx, ny, ng);
   poisson_ = make_poisson_solver(cfg_.poisson);
   initialise();
+  if (!solids_.empty()) {
+    // velocity scale of the contact pressure (solver/contact.hpp): the largest initial
+    // speed on the grid and the free-fall speed over the domain along g
+    double umax = 0.0;
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) umax = std::max(umax, std::hypot(u_(i, j), v_(i, j)));
+    const double gmag = std::hypot(cfg_.gx, cfg_.gy);
+    if (gmag > 0.0) {
+      const double L = (std::abs(cfg_.gx) * cfg_.grid.lx() + std::abs(cfg_.gy) * cfg_.grid.ly()) / gmag;
+      umax = std::max(umax, std::sqrt(2.0 * gmag * L));
+    }
+    contact_ = std::make_unique<Contact>(cfg_, umax);
+    if (contact_->force_enabled()) {
+      cfx_.resize(nx + 1, ny, ng);
+      cfy_.resize(nx, ny + 1, ng);
+    }
+    contact_->observe(t_, solids_, u_, v_);
+  }
 }
 
 namespace {
@@ -249,7 +267,33 @@ double Simulation::stable_dt() const {
   });
   if (nu_max > 0.0) dt = std::min(dt, cfg_.visc_safety * g.dx * g.dx / (6.0 * nu_max));
   for (const auto& s : solids_) dt = std::min(dt, s->min_dt());
+  if (contact_ && contact_->force_enabled()) {
+    // the force acts in the layer -2 dx < phi < 0 of a solid, where the blended density is
+    // at least the mean of the solid's and the fluid's
+    double rho_min = 1e300;
+    for (const auto& s : solids_) rho_min = std::min(rho_min, 0.5 * (s->spec().density + cfg_.rho_f));
+    dt = std::min(dt, contact_->min_dt(rho_min));
+  }
   return dt;
+}
+
+void Simulation::add_contact_face_accel() {
+  // G_f -= beta_f F_f: the contact force per unit volume on each face, over the face density
+  if (!(contact_ && contact_->force_enabled())) return;
+  const Grid& g = cfg_.grid;
+  const bool px = periodic_x(cfg_.bc), py = periodic_y(cfg_.bc);
+  parallel_rows(0, g.ny, [&](int j) {
+    for (int i = 1; i < g.nx; ++i) gxf_(i, j) -= beta_x_(i, j) * cfx_(i, j);
+    if (px) {
+      gxf_(0, j) -= beta_x_(0, j) * cfx_(0, j);
+      gxf_(g.nx, j) = gxf_(0, j);
+    }
+  });
+  parallel_rows(0, g.ny + 1, [&](int j) {
+    if ((j == 0 || j == g.ny) && !py) return;  // wall faces carry no normal velocity
+    const int jj = j == g.ny ? 0 : j;
+    for (int i = 0; i < g.nx; ++i) gyf_(i, j) -= beta_y_(i, jj) * cfy_(i, jj);
+  });
 }
 
 void Simulation::project(double dt) {
@@ -262,6 +306,7 @@ void Simulation::project(double dt) {
     // step 5, eq. (5.3): Rhie-Chow-like face velocity with the old pressure and the body force
     face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
                g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, fb);
+    add_contact_face_accel();
     predict_face_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), uf_.view(), vf_.view(),
                           g.nx, g.ny, dt, fb);
     face_divergence(uf_.view(), vf_.view(), rhs_.view(), g.nx, g.ny, g.dx, 1.0 / dt);
@@ -285,6 +330,7 @@ void Simulation::project(double dt) {
     // step 9, eq. (5.7): cell velocities with the new pressure
     face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
                g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, fb);
+    add_contact_face_accel();
     correct_cell_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny, dt);
     apply_velocity_bc(u_, v_, t_ + dt);
   }
@@ -305,6 +351,10 @@ double Simulation::step(double dt) {
     if (prescribed_depends_on_time_) {
       ScopedPhase ph(timers_, "prescribed flow");
       impose_prescribed_velocity(t_);
+    }
+    if (contact_) {
+      ScopedPhase ph(timers_, "contact");
+      contact_->observe(t_, solids_, u_, v_);
     }
     return dt;
   }
@@ -376,9 +426,21 @@ double Simulation::step(double dt) {
     ScopedPhase ph(timers_, "poisson setup");
     build_poisson_coefficients();
   }
+  if (contact_ && contact_->force_enabled()) {
+    // contact force on the faces of the new configuration (solver/contact.hpp), applied
+    // with the pressure gradient and gravity in the balanced-force face accelerations
+    ScopedPhase ph(timers_, "contact");
+    cfx_.fill(0.0);
+    cfy_.fill(0.0);
+    contact_->add_force(solids_, cfx_, cfy_);
+  }
   project(dt);
   t_ += dt;
   ++nstep_;
+  if (contact_) {
+    ScopedPhase ph(timers_, "contact");
+    contact_->observe(t_, solids_, u_, v_);
+  }
   return dt;
 }
 
@@ -478,9 +540,10 @@ std::vector<std::string> Simulation::diagnostic_columns() const {
   if (!solids_.empty()) {
     c.push_back("elastic_energy");
     c.push_back("total_energy");
+    c.push_back("contact_energy");
   }
   for (size_t k = 0; k < solids_.size(); ++k)
-    for (const char* q : {"area", "cx", "cy", "u", "v", "sigma_max"})
+    for (const char* q : {"area", "cx", "cy", "u", "v", "sigma_max", "gap_solid", "gap_wall"})
       c.push_back("solid" + std::to_string(k) + "_" + q);
   return c;
 }
@@ -492,10 +555,13 @@ std::vector<double> Simulation::diagnostic_values(double last_dt, double wall) c
   if (!solids_.empty()) {
     r.push_back(elastic_energy_);
     r.push_back(ke + elastic_energy_);
+    r.push_back(contact_->energy());
   }
-  for (const auto& s : solids_) {
-    const SolidDiagnostics d = s->diagnostics(u_, v_);
-    for (double q : {d.area, d.cx, d.cy, d.u, d.v, d.sigma_max}) r.push_back(q);
+  for (size_t k = 0; k < solids_.size(); ++k) {
+    const SolidDiagnostics d = solids_[k]->diagnostics(u_, v_);
+    for (double q : {d.area, d.cx, d.cy, d.u, d.v, d.sigma_max, contact_->gap_solid(int(k)),
+                     contact_->gap_wall(int(k))})
+      r.push_back(q);
   }
   return r;
 }
@@ -638,6 +704,17 @@ RunSummary Simulation::run(const RunOptions& opt) {
     }
   }
   if (csv) csv->flush();
+  if (contact_) {
+    finish_events();
+    if (output) {
+      std::FILE* f = std::fopen((fs::path(opt.out_dir) / "events.csv").string().c_str(), "w");
+      if (!f) throw std::runtime_error("cannot write " + (fs::path(opt.out_dir) / "events.csv").string());
+      std::fprintf(f, "time,solid,event,value\n");
+      for (const ContactEvent& e : contact_->events())
+        std::fprintf(f, "%.10g,%d,%s,%.10g\n", e.time, e.solid, e.event.c_str(), e.value);
+      std::fclose(f);
+    }
+  }
   sum.steps = nstep_;
   sum.t_end = t_;
   sum.wall_s = wall_seconds_since(wall0);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "solver/config.hpp"
+#include "solver/contact.hpp"
 #include "solver/field.hpp"
 #include "solver/grid.hpp"
 #include "solver/poisson.hpp"
@@ -68,6 +69,14 @@ class Simulation {
   const Field& solid_stress_xx() const { return sxx_; }
   const Field& solid_stress_xy() const { return sxy_; }
   const Field& solid_stress_yy() const { return syy_; }
+  /// Closes the contact event log at the current time (restitution of a rebound still
+  /// being tracked); run() calls it at the end.
+  void finish_events() { if (contact_) contact_->finish(t_); }
+  /// Contact model and gap/event tracker (null without solids).
+  const Contact* contact() const { return contact_.get(); }
+  /// The contact force density of the last step on x- and y-faces (empty without contact).
+  const Field& contact_force_x() const { return cfx_; }
+  const Field& contact_force_y() const { return cfy_; }
   /// Total momentum sum rho u dx^2 (x and y).
   std::pair<double, double> momentum() const;
 
@@ -94,6 +103,8 @@ class Simulation {
   std::vector<double> diagnostic_values(double last_dt, double wall) const;
   void solid_output_fields(Field& phi, Field& xix, Field& xiy, Field& normal) const;
   void project(double dt);
+  /// Subtracts beta_f times the contact face force from the face accelerations gxf_, gyf_.
+  void add_contact_face_accel();
   /// "" if the state is healthy, else a message naming the step, time and cell.
   std::string check_health(double dt) const;
 
@@ -112,6 +123,8 @@ class Simulation {
   Field sxx_, sxy_, syy_;                  // blended solid stress (global, if any solid is elastic)
   double elastic_energy_ = 0.0;
   bool prescribed_depends_on_time_ = false;  ///< flow = "prescribed" with an expression of t
+  std::unique_ptr<Contact> contact_;
+  Field cfx_, cfy_;                        // contact force density of the last step
   std::unique_ptr<PoissonSolver> poisson_;
   SolveStats last_stats_;
   PhaseTimers timers_;

@@ -1,0 +1,148 @@
+#pragma once
+// Solid-solid and solid-wall contact: a repulsive body force between the zero level sets
+// (the fictitious contact force of the RMT, Valkov et al. 2015, which Jain & Mani adopt),
+// the gap diagnostics and the contact / restitution event log.
+//
+// THE FORCE. Every solid i is pushed by a contact pressure p_c that depends only on the
+// distance s from the obstacle (another solid j: s = phi_j; a wall: s = distance of the
+// cell centre to the wall):
+//
+//     p_c(s) = P (1 - s/d)^3  for s < d,   0 for s >= d          (d = range * dx)
+//
+// acting as a traction -p_c n_i on i's boundary, spread over a thin layer just inside i
+// (h = 2 dx) by the smooth ramp chi_i = S(-phi_i / h), S(x) = x^2 (3 - 2x) on [0, 1]:
+//
+//     f_i = p_c(s) grad chi_i          (= -p_c S'/h n_i, n_i the outward normal of i)
+//
+// discretised on the faces, F_f = (mean of p_c over the two cells of the face) x
+// (difference of chi_i across it) / dx, and applied like gravity in the balanced-force face
+// accelerations of the projection (G_f -= F_f / rho_f, eqs. 5.3 and 5.7), so the part of
+// the force that is a gradient is cancelled exactly by the pressure instead of leaving a
+// collocated residual (a cell-centred version of the same force gained energy in contact).
+// Why this form:
+//  * it is the variation of the potential U = sum chi_i p_c(s) dx^2 (reported as
+//    contact_energy): with p_c fixed (a wall), sum_f F_f u_f = -dU/dt for chi advected by
+//    the face velocities, so the contact stores and returns energy instead of creating it;
+//  * it is normal to i's surface (no friction), zero beyond the range, C^2 at s = d, grows
+//    cubically as the gap closes and further for s < 0, so an approach is stopped before
+//    the zero level sets cross as long as P exceeds the dynamic pressure of the approach;
+//  * it acts only on i's own layer (-h < phi_i < 0 and the face next to it): it never
+//    pushes the other solid's material;
+//  * equal and opposite: for a pair, the discrete totals F_ij (on i) and F_ji (on j) agree
+//    with -each other only to discretisation accuracy; both are replaced by
+//    +-Fbar = +-(F_ij - F_ji)/2, per direction, by adding (Fbar - F_ij) w_f / sum w to each
+//    face of i's patch (w_f = |F_f|; likewise for j). The correction stays in the contact
+//    patch and the pair's total force is zero to round-off, so contact cannot change the
+//    total momentum. If one of the two patches is empty (the other solid's surface not
+//    yet resolved on a cell within range) the pair exerts no force at that step.
+//
+// THE STRENGTH does not depend on the solids' stiffness: P = stiffness * rho_max * U^2,
+// rho_max the largest density of the scene (fluid or solid) and U a velocity scale:
+// contact.velocity_scale if given, else the larger of the largest initial speed on the
+// grid and the free-fall speed sqrt(2 |g| L) over the domain extent L along g (if both are
+// 0: the domain width divided by the run time). The default stiffness 20 makes p_c(0) 40
+// times the stagnation pressure rho_max U^2 / 2 of the fastest approach the scene can
+// produce. (An earlier attempt scaled the strength with mu_s: the restitution of a bounce
+// then measured the contact law, not the solid.)
+//
+// THE TIME STEP. The layer is a spring of stiffness dp_c/ds = 3P/d at s = 0 acting on a
+// layer of mass rho h per unit area, rho >= (rho_s + rho_f)/2 there: dt <= 0.5 / omega,
+// omega^2 = 2 * 3P / (d rho h) (the factor 2 is a margin for s < 0, where it stiffens).
+//
+// PERIODIC BOUNDARIES. Contact is computed on the global grid from the solids' windows.
+// A solid that spans a periodic direction has a wrapped window (its phi and normals are
+// periodic there), so contact with it across that boundary is handled. Any other solid is
+// kept by Solid::fit_window at least band + 3 cells from a periodic boundary (an error
+// otherwise), so two such solids are at least 2 (band + 3) > range cells apart across it:
+// contact.range must be < solids.band (checked when the scene is loaded).
+//
+// GAPS (diagnostics). Between solids i and j: min over the cells where both phi_i and
+// phi_j are < band of phi_i + phi_j (for exact distance functions phi_i + phi_j >= gap by
+// the triangle inequality, with equality on the segment joining the closest points: the
+// cell-centre sampling error is O(dx^2 / R)); negative when the zero level sets overlap.
+// "No other solid within reach" (no such cell) gives the domain diagonal as a sentinel.
+// To a wall: min over the cells with phi_i < band of (distance of the cell centre to the
+// wall + phi_i) (again >= the gap, equal on the wall normal through the closest point);
+// with no wall (all sides periodic) the domain diagonal.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "solver/config.hpp"
+#include "solver/field.hpp"
+#include "solver/grid.hpp"
+#include "solver/solid.hpp"
+
+namespace refmap {
+
+struct ContactEvent {
+  double time = 0.0;
+  int solid = 0;
+  std::string event;  ///< "contact_start", "contact_end", "restitution"
+  double value = 0.0;
+};
+
+class Contact {
+ public:
+  /// `velocity_scale`: the U of the pressure scale when contact.velocity_scale is 0.
+  Contact(const Config& cfg, double velocity_scale);
+
+  /// Potential energy of the contact force at the last add_force: sum over every solid and
+  /// obstacle of chi_i p_c(s) dx^2 (the force p_c grad chi_i is minus its variation).
+  double energy() const { return energy_; }
+  double pressure() const { return P_; }      ///< P: contact pressure at zero gap
+  double range() const { return d_; }         ///< d in length units
+  bool force_enabled() const { return force_; }
+
+  /// Adds the contact force density of every pair and every wall on the faces: fxf(i, j)
+  /// on the x-face left of cell (i, j) ((nx + 1) x ny), fyf(i, j) on the y-face below it.
+  /// On a periodic seam the force is stored at index 0 only.
+  void add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field& fxf, Field& fyf);
+  /// Largest stable dt of the contact spring (1e300 if the force is off).
+  double min_dt(double rho_min) const;
+
+  /// Gap between two solids' zero level sets (sentinel: the domain diagonal).
+  double pair_gap(const Solid& a, const Solid& b) const;
+  /// Gap between a solid and one side (sentinel for a periodic side).
+  double wall_gap(const Solid& s, int side) const;
+  double sentinel() const { return sentinel_; }
+
+  /// After each step: gaps, contact state and events. u, v: cell velocity.
+  void observe(double t, const std::vector<std::unique_ptr<Solid>>& solids, const Field& u,
+               const Field& v);
+  /// At the end of a run: restitution of a rebound still being tracked.
+  void finish(double t);
+  double gap_solid(int i) const { return gap_solid_.at(i); }
+  double gap_wall(int i) const { return gap_wall_.at(i); }
+  const std::vector<ContactEvent>& events() const { return events_; }
+
+  /// Pair force totals of the last add_force (x, y of solid a then b, for every pair with
+  /// a force), for tests.
+  const std::vector<double>& last_pair_totals() const { return pair_totals_; }
+
+ private:
+  struct WallState {
+    bool in_contact = false, pending = false;
+    double vmin = 0.0, vmax = 0.0, v_before = 0.0;
+    bool started = false;
+  };
+  struct PairState { bool in_contact = false; };
+  void emit(double t, int solid, const char* what, double value);
+  void close_rebound(double t, int solid, WallState& w);
+
+  Grid g_;
+  /// phi of s at a global cell, wrapped across periodic directions, +band outside.
+  double phi_at(const Solid& s, int gi, int gj) const;
+  std::array<bool, 4> wall_{};
+  bool px_ = false, py_ = false;
+  bool force_ = false;
+  double P_ = 0.0, d_ = 0.0, h_ = 0.0, sentinel_ = 0.0;
+  std::vector<double> gap_solid_, gap_wall_;
+  std::vector<std::array<WallState, 4>> wall_state_;
+  std::vector<PairState> pair_state_;  // i < j, index i * n + j
+  std::vector<ContactEvent> events_;
+  std::vector<double> pair_totals_;
+  double energy_ = 0.0;
+};
+
+}  // namespace refmap
