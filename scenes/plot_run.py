@@ -429,11 +429,21 @@ def plot_solids(d, events, refs, outdir, title, dpi, domain):
                 np.array([float(s) for s in events["solid"]])
             et = events["time"]
             val = events["value"]
+            # restitution_unfinished (the run ended before the rebound was over): a lower
+            # bound, drawn hollow and annotated with ">="
+            unfinished = np.array(["unfinished" in str(e) for e in events["event"]])
             for i in sorted(set(sol[restitution].astype(int))):
-                m = restitution & (sol.astype(int) == i)
-                ax.plot(et[m], val[m], "o", color=colours[i % len(colours)], label=f"solid{i}")
-                for tt, vv in zip(et[m], val[m]):
-                    ax.annotate(f"{vv:.3f}", (tt, vv), textcoords="offset points", xytext=(4, 4), fontsize=7)
+                c = colours[i % len(colours)]
+                m = restitution & (sol.astype(int) == i) & ~unfinished
+                mu = restitution & (sol.astype(int) == i) & unfinished
+                ax.plot(et[m], val[m], "o", color=c, label=f"solid{i}")
+                if mu.any():
+                    ax.plot(et[mu], val[mu], "o", mfc="none", color=c, label=f"solid{i} (unfinished)")
+                for tt, vv, u in zip(et[restitution & (sol.astype(int) == i)],
+                                     val[restitution & (sol.astype(int) == i)],
+                                     unfinished[restitution & (sol.astype(int) == i)]):
+                    ax.annotate(f"{'>= ' if u else ''}{vv:.3f}", (tt, vv), textcoords="offset points",
+                                xytext=(4, 4), fontsize=7)
             ax.set_xlabel("t")
             ax.set_ylabel("restitution coefficient")
             ax.set_title("restitution (events.csv)", fontsize=10)

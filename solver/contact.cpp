@@ -185,11 +185,11 @@ void Contact::emit(double t, int solid, const char* what, double value) {
   events_.push_back({t, solid, what, value});
 }
 
-void Contact::close_rebound(double t, int solid, WallState& w) {
+void Contact::close_rebound(double t, int solid, WallState& w, const char* event) {
   // restitution = -v_after / v_before: v_before the most negative normal velocity
   // (towards the wall) of the approach, v_after the largest normal velocity from the start
   // of the contact until the rebound ends; only for a real approach (v_before < 0)
-  if (w.v_before < 0.0) emit(t, solid, "restitution", -w.vmax / w.v_before);
+  if (w.v_before < 0.0) emit(t, solid, event, -w.vmax / w.v_before);
   w.pending = false;
 }
 
@@ -262,7 +262,9 @@ void Contact::finish(double t) {
   for (size_t i = 0; i < wall_state_.size(); ++i)
     for (auto& w : wall_state_[i])
       if (w.pending || w.in_contact) {
-        close_rebound(t, int(i), w);
+        // the run ended during a contact or before the rebound was over: the value is
+        // only a lower bound of the bounce's restitution, so it gets its own event name
+        close_rebound(t, int(i), w, "restitution_unfinished");
         if (w.in_contact) w.v_before = 0.0;  // reported once
       }
 }

@@ -128,7 +128,7 @@ class Contact {
   };
   struct PairState { bool in_contact = false; };
   void emit(double t, int solid, const char* what, double value);
-  void close_rebound(double t, int solid, WallState& w);
+  void close_rebound(double t, int solid, WallState& w, const char* event = "restitution");
 
   Grid g_;
   /// phi of s at a global cell, wrapped across periodic directions, +band outside.
