@@ -16,12 +16,12 @@
 #   bash bench/run_studies.sh            # full (target <= 20 min on a quiet 2-core machine)
 #   QUICK=1 bash bench/run_studies.sh    # cheapest settings, a couple of minutes
 #
-# Knobs: QUICK=1; BUILD (build directory, default build-bench, shared with
+# Knobs: QUICK=1; OUT (output directory, default results); BUILD (build directory, default build-bench, shared with
 # run_benchmarks.sh); PYTHON; STUDIES="costs many accuracy" (a subset); REPS (repetitions of
 # each timing run, the median run by total time is kept; default 3, QUICK 1).
 # Output: results/scene_costs.csv, results/scene_costs.png, results/accuracy_vs_cost.csv,
 # results/accuracy_vs_cost_{taylor_green,cavity,couette}.png; the raw runs (timings.csv,
-# probes, diagnostics; no VTK except the last TGV frame) in results/raw/studies/ (not
+# probes, diagnostics; VTK only for TGV: first and last frame) in results/raw/studies/ (not
 # committed: see .gitignore) and results/raw/studies_info.txt (machine, load, wall times).
 set -euo pipefail
 
@@ -40,8 +40,9 @@ if [[ -z "${PYTHON:-}" ]]; then
 fi
 
 BIN="$BUILD/refmap"
-RAW=results/raw/studies
-INFO=results/raw/studies_info.txt
+OUT="${OUT:-results}"
+RAW="$OUT/raw/studies"
+INFO="$OUT/raw/studies_info.txt"
 mkdir -p "$RAW"
 
 echo "== configure and build refmap (Release, $BUILD)"
@@ -53,6 +54,13 @@ GIT_REV="$(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
 git diff --quiet HEAD -- . ':(exclude)results' 2>/dev/null || GIT_REV="$GIT_REV (with uncommitted changes)"
 CXX_PATH="$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$BUILD/CMakeCache.txt")"
 T0=$(date +%s)
+# keep the record of the parts not run this time (their results stay in $RAW)
+KEEP=""
+for part in costs many accuracy; do
+  if [[ " $STUDIES " != *" $part "* && -f "$INFO" ]]; then
+    KEEP+="$(grep -E "^[a-z_]+_${part}(_s)?:" "$INFO" || true)"$'\n'
+  fi
+done
 {
   echo "date: $(date -u '+%Y-%m-%d %H:%M:%S UTC')"
   echo "host_model: $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1)"
@@ -62,7 +70,16 @@ T0=$(date +%s)
   echo "command: QUICK=$QUICK REPS=$REPS STUDIES='$STUDIES' bash bench/run_studies.sh"
   echo "omp_proc_bind: ${OMP_PROC_BIND:-unset}"
   echo "uptime_before: $(uptime)"
+  printf '%s' "$KEEP" | sed '/^$/d'
 } > "$INFO"
+# per part: date, uptime before/after, wall time (part_begin NAME / part_end NAME)
+part_begin() {
+  P0=$(date +%s)
+  { echo "date_$1: $(date -u '+%Y-%m-%d %H:%M:%S UTC')"; echo "uptime_before_$1: $(uptime)"; } >> "$INFO"
+}
+part_end() {
+  { echo "uptime_after_$1: $(uptime)"; echo "wall_$1_s: $(( $(date +%s) - P0 ))"; } >> "$INFO"
+}
 
 # run DIR THREADS SCENE [refmap options...]: one quiet run into DIR (replaced)
 run() {
@@ -76,7 +93,7 @@ if [[ " $STUDIES " == *" costs "* ]]; then
   if [[ "$QUICK" == 1 ]]; then WARM=3; STEPS=20; else WARM=10; STEPS=200; fi
   SCENES=(lid_driven_cavity_re1000 disc_tgv soft_disc_cavity zalesak two_solids_tgv bounce_soft)
   echo "== scene costs: $WARM warm-up + $STEPS timed steps, threads 1 and 2, $REPS repetition(s)"
-  s0=$(date +%s)
+  part_begin costs
   rm -rf "$RAW/cost"
   for sc in "${SCENES[@]}"; do
     f="scenes/$sc.toml"
@@ -89,14 +106,14 @@ if [[ " $STUDIES " == *" costs "* ]]; then
       echo "   $sc, $t thread(s): done"
     done
   done
-  echo "wall_costs_s: $(( $(date +%s) - s0 ))" >> "$INFO"
+  part_end costs
 fi
 
 # ---------------------------------------------------------------- 2. many small solids
 if [[ " $STUDIES " == *" many "* ]]; then
   if [[ "$QUICK" == 1 ]]; then WARM=2; STEPS=5; else WARM=5; STEPS=30; fi
   echo "== many small solids vs one: 512^2, N = 1, 16, 64 discs, $WARM + $STEPS steps, 1 thread"
-  s0=$(date +%s)
+  part_begin many
   rm -rf "$RAW/many"
   for n in 1 16 64; do
     for r in $(seq 1 "$REPS"); do
@@ -105,7 +122,7 @@ if [[ " $STUDIES " == *" many "* ]]; then
     done
     echo "   $n disc(s): done"
   done
-  echo "wall_many_s: $(( $(date +%s) - s0 ))" >> "$INFO"
+  part_end many
 fi
 
 # ---------------------------------------------------------------- 3. accuracy vs cost
@@ -116,7 +133,7 @@ if [[ " $STUDIES " == *" accuracy "* ]]; then
     TGV_N="32 64 128 256"; CAV_N="32 64 128"; COU_N="16 32 64"
   fi
   echo "== accuracy vs cost (1 thread): TGV n = $TGV_N; cavity Re 100 n = $CAV_N; Couette cells/unit = $COU_N"
-  s0=$(date +%s)
+  part_begin accuracy
   rm -rf "$RAW/acc"
   for adv in central superbee; do
     for n in $TGV_N; do   # t = 1, first and last VTK frame (the error is read from the last)
@@ -139,7 +156,7 @@ if [[ " $STUDIES " == *" accuracy "* ]]; then
       echo "   couette $adv $n: done"
     done
   done
-  echo "wall_accuracy_s: $(( $(date +%s) - s0 ))" >> "$INFO"
+  part_end accuracy
 fi
 
 {
@@ -148,5 +165,5 @@ fi
 } >> "$INFO"
 
 echo "== analyse"
-"$PYTHON" bench/studies.py --raw "$RAW" --info "$INFO" --out results
+"$PYTHON" bench/studies.py --raw "$RAW" --info "$INFO" --out "$OUT"
 echo "run_studies.sh: done in $(( $(date +%s) - T0 )) s (plus the build)"

@@ -386,10 +386,12 @@ def main():
     header = header_lines(info, {})
     for k in ("uptime_before", "uptime_after"):
         if k in info:
-            header.append(f"{k.replace('_', ' ')}: {info[k]}")
-    walls = [f"{k[5:-2]} {info[k]} s" for k in info if k.startswith("wall_") and k.endswith("_s")]
-    if walls:
-        header.append("wall time of the study runs: " + ", ".join(walls))
+            header.append(f"{k.replace('_', ' ')} (this invocation): {info[k]}")
+    for part in ("costs", "many", "accuracy"):  # each part's own date, load and wall time
+        if f"date_{part}" in info:
+            header.append(f"part {part}: run {info[f'date_{part}']}, wall {info.get(f'wall_{part}_s', '?')} s, "
+                          f"uptime before: {info.get(f'uptime_before_{part}', '?')}; "
+                          f"after: {info.get(f'uptime_after_{part}', '?')}")
     plt = None
     if not a.no_plots:
         try:
