@@ -38,7 +38,6 @@ import glob
 import math
 import os
 import re
-import statistics
 import sys
 import tomllib
 
@@ -282,7 +281,6 @@ def err_cavity(run_dir):
     du = np.interp(gu["y_exact"][ky], py, pu) - gu["u_Re100"][ky]
     dv = np.interp(gv["x_exact"][kx], px, pv) - gv["v_Re100"][kx]
     ru, rv = math.sqrt(np.mean(du ** 2)), math.sqrt(np.mean(dv ** 2))
-    meta = {}
     with open(os.path.join(run_dir, "diagnostics.csv")) as f:
         last = [ln for ln in f if ln.strip() and not ln.startswith("#")][-1]
     t_end = float(last.split(",")[1])
