@@ -16,13 +16,16 @@
 #   THREADS       thread counts to run (default "1 2")
 #   MAX_LOAD      wait (sleep 60, at most 5 times) while the 1-minute load average is above
 #                 this before starting (default 1.2; 0 disables the wait)
+#   STUDIES       whole-run studies run afterwards by bench/run_studies.sh (default
+#                 "costs many accuracy"; "none" skips them); QUICK is passed on
 #   OMP_PROC_BIND and other OpenMP variables are passed through unchanged (default: unbound,
 #                 so a thread can move away from a core another job is using)
 #
 # Output: results/raw/bench_<threads>t.json (Google Benchmark JSON, aggregates only),
 #         results/raw/run_info.txt (machine, compiler, command line),
 #         results/raw/run_<threads>t.txt (date, load averages before/after, wall time),
-#         results/benchmarks.csv, results/benchmarks.md, results/*.png (bench/summarise.py).
+#         results/benchmarks.csv, results/benchmarks.md, results/*.png (bench/summarise.py);
+#         then bench/run_studies.sh: results/scene_costs.*, results/accuracy_vs_cost*.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -122,3 +125,8 @@ done
 
 echo "== summarise"
 "$PYTHON" bench/summarise.py --raw "$RAW" --out results
+
+if [[ "${STUDIES:-}" != none ]]; then
+  echo "== whole-run studies (bench/run_studies.sh, QUICK=$QUICK)"
+  QUICK="$QUICK" BUILD="$BUILD" PYTHON="$PYTHON" bash bench/run_studies.sh
+fi

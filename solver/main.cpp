@@ -1,6 +1,7 @@
 // refmap command line:
 //
 //   refmap run SCENE.toml [--out DIR] [--threads N] [--set key=value ...] [--quiet]
+//              [--timing-warmup N]
 //   refmap --help | refmap run --help | refmap --version
 //
 // Exit codes: 0 success, 1 unexpected error, 2 bad command line or scene file (nothing is
@@ -98,8 +99,31 @@ void print_outputs(const fs::path& dir) {
   for (const auto& p : probes) std::printf("probe:       %s\n", p.string().c_str());
 }
 
+/// DIR/timings.csv: the phase table of the run in machine-readable form ('#' key: value
+/// lines, then phase,seconds,calls; see README.md "Output").
+void write_timings_csv(const fs::path& dir, const refmap::Simulation& sim, const refmap::RunSummary& s,
+                       int nthreads, long warmup) {
+  std::ostringstream o;
+  const refmap::Config& c = sim.config();
+  long window_cells = 0;
+  std::size_t bytes = 0;
+  for (const auto& solid : sim.solids()) {
+    window_cells += long(solid->ni()) * long(solid->nj());
+    bytes += solid->storage_bytes();
+  }
+  o << "# refmap timings (wall seconds per phase over the timed steps)\n"
+    << "# scene: " << c.name << "\n# nx: " << c.grid.nx << "\n# ny: " << c.grid.ny << "\n# threads: " << nthreads
+    << "\n# steps: " << s.steps << "\n# warmup_steps: " << warmup << "\n# timed_steps: " << s.timed_steps
+    << "\n# timed_wall_s: " << s.timed_wall_s << "\n# wall_s: " << s.wall_s << "\n# solids: " << sim.solids().size()
+    << "\n# solid_window_cells: " << window_cells << "\n# solid_storage_bytes: " << bytes << "\n";
+  sim.timers().write_csv(o, s.timed_wall_s);
+  std::ofstream f(dir / "timings.csv", std::ios::trunc);
+  f << o.str();
+  if (!f) throw std::runtime_error("cannot write " + (dir / "timings.csv").string());
+}
+
 int cmd_run(const std::string& scene, std::string out, int threads, bool threads_given,
-            const std::vector<std::string>& sets, bool quiet) {
+            const std::vector<std::string>& sets, bool quiet, long warmup) {
   if (threads_given && threads < 1) return error("--threads must be >= 1, got " + std::to_string(threads), kExitUsage);
 
   refmap::Config cfg;
@@ -133,6 +157,8 @@ int cmd_run(const std::string& scene, std::string out, int threads, bool threads
   ro.out_dir = dir.string();
   ro.progress = !quiet;
   ro.quiet = quiet;
+  if (warmup < 0) return error("--timing-warmup must be >= 0, got " + std::to_string(warmup), kExitUsage);
+  ro.timing_warmup_steps = warmup;
   const refmap::RunSummary s = sim.run(ro);
 
   if (s.failed) {
@@ -142,13 +168,16 @@ int cmd_run(const std::string& scene, std::string out, int threads, bool threads
     std::cerr << "refmap: partial output in " << dir.string() << std::endl;
     return kExitFailed;
   }
+  write_timings_csv(dir, sim, s, nthreads, warmup);
   if (!quiet) {
     std::printf("\nfinished: %ld steps, simulated time %.10g, wall %.3f s%s\n", s.steps, s.t_end, s.wall_s,
                 s.steady ? " (steady state reached)" : "");
     print_outputs(dir);
     std::printf("\n");
     std::ostringstream table;
-    sim.timers().report(table, s.wall_s);
+    if (warmup > 0)
+      table << "(phase times of the last " << s.timed_steps << " steps, after " << warmup << " warm-up steps)\n";
+    sim.timers().report(table, s.timed_wall_s);
     for (const auto& solid : sim.solids()) {
       const refmap::ExtrapolationCounters& c = solid->extrapolation_counters();
       char line[256];
@@ -179,10 +208,12 @@ int main(int argc, char** argv) {
   int threads = 0;
   std::vector<std::string> sets;
   bool quiet = false;
+  long warmup = 0;
   CLI::App* run = app.add_subcommand("run", "run a simulation from a scene file");
   run->footer("Writes DIR/scene.toml (the scene, for reproducing the run), VTK frames with a .pvd series,\n"
-              "diagnostics.csv and probe CSVs. Exit codes: 0 ok, 1 unexpected error, 2 bad command line or\n"
-              "scene file (nothing written), 3 the simulation failed. Scene keys: scenes/README.md.");
+              "diagnostics.csv, probe CSVs and timings.csv (wall time per phase). Exit codes: 0 ok,\n"
+              "1 unexpected error, 2 bad command line or scene file (nothing written), 3 the simulation\n"
+              "failed. Scene keys: scenes/README.md.");
   run->add_option("scene", scene, "scene file (TOML)")->required()->type_name("SCENE.toml");
   run->add_option("-o,--out", out, "output directory (default: out/<scene name>)")->type_name("DIR");
   CLI::Option* threads_opt =
@@ -193,6 +224,9 @@ int main(int argc, char** argv) {
                   "(the value is TOML; a bare word is a string); repeatable")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
+  run->add_option("--timing-warmup", warmup,
+                  "leave the first N steps out of the phase timings (table and DIR/timings.csv)")
+      ->type_name("N");
   run->add_flag("-q,--quiet", quiet, "no progress display and no summary (errors are still printed)");
 
   try {
@@ -203,7 +237,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (run->parsed()) return cmd_run(scene, out, threads, threads_opt->count() > 0, sets, quiet);
+    if (run->parsed()) return cmd_run(scene, out, threads, threads_opt->count() > 0, sets, quiet, warmup);
     std::cerr << app.help();
     return kExitUsage;
   } catch (const std::exception& e) {

@@ -653,7 +653,15 @@ RunSummary Simulation::run(const RunOptions& opt) {
   const double eps_t = 1e-12 * std::max(1.0, std::abs(cfg_.t_end));
   double next_frame = cfg_.output_interval > 0.0 ? cfg_.t_start + cfg_.output_interval : cfg_.t_end;
   Field u_old, v_old;
+  // phase timers cover the steps after the warm-up (and the final output)
+  auto timed0 = wall0;
+  long timed_step0 = nstep_;
   while (t_ < cfg_.t_end - eps_t) {
+    if (opt.timing_warmup_steps > 0 && nstep_ == opt.timing_warmup_steps) {
+      timers_.reset();
+      timed0 = std::chrono::steady_clock::now();
+      timed_step0 = nstep_;
+    }
     if (cfg_.max_steps > 0 && nstep_ >= cfg_.max_steps) break;
     double dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
     // land exactly on frame times and the end time
@@ -718,6 +726,8 @@ RunSummary Simulation::run(const RunOptions& opt) {
   sum.steps = nstep_;
   sum.t_end = t_;
   sum.wall_s = wall_seconds_since(wall0);
+  sum.timed_steps = nstep_ - timed_step0;
+  sum.timed_wall_s = wall_seconds_since(timed0);
   return sum;
 }
 

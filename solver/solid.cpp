@@ -349,4 +349,16 @@ double Solid::min_dt() const {
          std::sqrt(2.0 * spec_.mu_s * std::max(1.0, max_stretch2_) / spec_.density);
 }
 
+std::size_t Solid::storage_bytes() const {
+  std::size_t b = 0;
+  for (const Field* f : {&xi_x_, &xi_y_, &phi_, &kx_, &ky_, &k2x_, &k2y_, &xs_, &ys_, &x0x_, &x0y_,
+                         &sxx_, &sxy_, &syy_})
+    b += f->raw_size() * sizeof(double);
+  b += known_.raw_size() * sizeof(std::uint8_t);
+  b += fmm_ws_.upos.capacity() * sizeof(double) + fmm_ws_.uneg.capacity() * sizeof(double) +
+       fmm_ws_.state.capacity() + fmm_ws_.heap.capacity() * sizeof(FmmHeapEntry) +
+       (fmm_ws_.pos.capacity() + fmm_ws_.init_cells.capacity() + fmm_ws_.accepted.capacity()) * sizeof(int);
+  return b;
+}
+
 }  // namespace refmap

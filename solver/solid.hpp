@@ -86,6 +86,10 @@ class Solid {
   double phi_global(int i, int j) const;
   const ExtrapolationCounters& extrapolation_counters() const { return counters_; }
   long rewindows() const { return rewindows_; }
+  /// Bytes held by the solid's window arrays (every Field and the mask, ghosts and row
+  /// padding included) plus its fast-marching workspace (capacity).
+  std::size_t storage_bytes() const;
+  int window_arrays() const { return 14; }  ///< double Fields on the window (see members)
   double band() const { return band_; }  ///< w_E in length units
   double transition() const { return wt_; }
 

@@ -28,6 +28,22 @@ class PhaseTimers {
   const std::map<std::string, Entry>& entries() const { return entries_; }
   const std::vector<std::string>& order() const { return order_; }
   double total() const { double s = 0; for (auto& [k, e] : entries_) s += e.seconds; return s; }
+  /// Forgets every phase (used to exclude warm-up steps from the accounting).
+  void reset() { entries_.clear(); order_.clear(); }
+
+  /// Machine-readable form of report(): "phase,seconds,calls" rows in table order, then
+  /// "other" (wall - sum of phases, calls 0) and "total" (wall, calls 0).
+  void write_csv(std::ostream& os, double wall) const {
+    char buf[160];
+    os << "phase,seconds,calls\n";
+    for (const auto& name : order_) {
+      const Entry& e = entries_.at(name);
+      std::snprintf(buf, sizeof buf, "%s,%.9g,%ld\n", name.c_str(), e.seconds, e.calls);
+      os << buf;
+    }
+    std::snprintf(buf, sizeof buf, "other,%.9g,0\ntotal,%.9g,0\n", wall - total(), wall);
+    os << buf;
+  }
 
   /// "phase  seconds  share  calls  ms/call" table; `wall` is the whole run's wall time.
   void report(std::ostream& os, double wall) const {
