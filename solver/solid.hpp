@@ -89,7 +89,6 @@ class Solid {
   /// Bytes held by the solid's window arrays (every Field and the mask, ghosts and row
   /// padding included) plus its fast-marching workspace (capacity).
   std::size_t storage_bytes() const;
-  int window_arrays() const { return 14; }  ///< double Fields on the window (see members)
   double band() const { return band_; }  ///< w_E in length units
   double transition() const { return wt_; }
 
