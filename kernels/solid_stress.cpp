@@ -8,20 +8,31 @@ void neo_hookean_stress(CView xi_x, CView xi_y, CView phi, int ni, int nj, doubl
                         double phi_max, View sxx, View sxy, View syy) {
   const double inv2 = 0.5 / dx;
   const double c = 2.0 * mu_s;
-  parallel_rows(0, nj, [&](int j) {
+  parallel_rows(0, nj, [=](int j) {
+    // restrict-qualified row pointers and a select instead of a branch, so that the loop
+    // vectorises; cells with phi >= phi_max are computed too (from whatever xi holds there,
+    // possibly stale) and then discarded by the select
+    const double* __restrict xs = &xi_x(0, j - 1);
+    const double* __restrict xc = &xi_x(0, j);
+    const double* __restrict xn = &xi_x(0, j + 1);
+    const double* __restrict ys = &xi_y(0, j - 1);
+    const double* __restrict yc = &xi_y(0, j);
+    const double* __restrict yn = &xi_y(0, j + 1);
+    const double* __restrict ph = &phi(0, j);
+    double* __restrict oxx = &sxx(0, j);
+    double* __restrict oxy = &sxy(0, j);
+    double* __restrict oyy = &syy(0, j);
+#pragma omp simd
     for (int i = 0; i < ni; ++i) {
-      if (!(phi(i, j) < phi_max)) {
-        sxx(i, j) = sxy(i, j) = syy(i, j) = 0.0;
-        continue;
-      }
-      const double gxx = (xi_x(i + 1, j) - xi_x(i - 1, j)) * inv2;
-      const double gxy = (xi_x(i, j + 1) - xi_x(i, j - 1)) * inv2;
-      const double gyx = (xi_y(i + 1, j) - xi_y(i - 1, j)) * inv2;
-      const double gyy = (xi_y(i, j + 1) - xi_y(i, j - 1)) * inv2;
+      const double gxx = (xc[i + 1] - xc[i - 1]) * inv2;
+      const double gxy = (xn[i] - xs[i]) * inv2;
+      const double gyx = (yc[i + 1] - yc[i - 1]) * inv2;
+      const double gyy = (yn[i] - ys[i]) * inv2;
       const Sym2 b = left_cauchy_green(gxx, gxy, gyx, gyy);
-      sxx(i, j) = c * (b.xx - 1.0);
-      sxy(i, j) = c * b.xy;
-      syy(i, j) = c * (b.yy - 1.0);
+      const bool in = ph[i] < phi_max;  // false for NaN phi too
+      oxx[i] = in ? c * (b.xx - 1.0) : 0.0;
+      oxy[i] = in ? c * b.xy : 0.0;
+      oyy[i] = in ? c * (b.yy - 1.0) : 0.0;
     }
   });
 }

@@ -350,7 +350,11 @@ void MultigridHierarchy::coarse_solve(int l, View x, CView f) {
       for (int i = 0; i < nx; ++i) c.vb[i + nx * j] = mean - f(i, j);
     c.vb[0] = 0.0;
     c.ve = c.llt.solve(c.vb);
-    const double em = c.ve.mean();
+    // mean by a plain loop (Eigen's vectorised mean() trips a false -Wmaybe-uninitialized
+    // of GCC 12 with AVX-512)
+    double em = 0.0;
+    for (Eigen::Index k = 0; k < c.ve.size(); ++k) em += c.ve[k];
+    em /= double(c.ve.size());
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) x(i, j) = c.ve[i + nx * j] - em;
   }
