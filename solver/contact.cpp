@@ -71,12 +71,17 @@ void Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field
   };
   // Face contributions of solid a pushed by the obstacle at distance dist(gi, gj):
   // F_f = mean of p_c over the two cells of the face * (difference of chi_a across it) / dx
+  // Only the cells of the box [bi0, bi1] x [bj0, bj1] (inclusive) are visited: the caller
+  // passes the part of a's window where the obstacle's pressure can be non-zero (plus the
+  // cells whose left/bottom face touches it), so the work follows the contact zone.
   auto layer = [&](const Solid& a, auto&& dist, std::vector<Contribution>& xs,
-                   std::vector<Contribution>& ys) {
+                   std::vector<Contribution>& ys, int bi0, int bi1, int bj0, int bj1) {
     xs.clear();
     ys.clear();
-    for (int gj = a.j0() - 1; gj <= a.j0() + a.nj(); ++gj)
-      for (int gi = a.i0() - 1; gi <= a.i0() + a.ni(); ++gi) {
+    const int gj_lo = std::max(a.j0() - 1, bj0), gj_hi = std::min(a.j0() + a.nj(), bj1);
+    const int gi_lo = std::max(a.i0() - 1, bi0), gi_hi = std::min(a.i0() + a.ni(), bi1);
+    for (int gj = gj_lo; gj <= gj_hi; ++gj)
+      for (int gi = gi_lo; gi <= gi_hi; ++gi) {
         if (gi < 0 || gi >= nx || gj < 0 || gj >= ny) continue;
         const double c0 = ramp(phi_at(a, gi, gj));
         const double p0 = pressure(dist(gi, gj));
@@ -118,8 +123,17 @@ void Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field
     for (size_t ib = ia + 1; ib < n; ++ib) {
       const Solid& a = *solids[ia];
       const Solid& b = *solids[ib];
-      layer(a, [&](int gi, int gj) { return phi_at(b, gi, gj); }, ax, ay);
-      layer(b, [&](int gi, int gj) { return phi_at(a, gi, gj); }, bx, by);
+      // Outside the other solid's window its phi is +band > d (range < band), so the
+      // pressure vanishes there: only the overlap of the two windows matters, extended by
+      // one cell up/right for the faces that touch it. Across a periodic direction the
+      // windows may wrap, so there the whole window is visited.
+      int bi0 = std::max(a.i0(), b.i0()) - 1, bi1 = std::min(a.i0() + a.ni(), b.i0() + b.ni());
+      int bj0 = std::max(a.j0(), b.j0()) - 1, bj1 = std::min(a.j0() + a.nj(), b.j0() + b.nj());
+      if (px_) { bi0 = -1; bi1 = nx; }
+      if (py_) { bj0 = -1; bj1 = ny; }
+      if (bi0 >= bi1 || bj0 >= bj1) continue;  // windows apart: no contact possible
+      layer(a, [&](int gi, int gj) { return phi_at(b, gi, gj); }, ax, ay, bi0, bi1, bj0, bj1);
+      layer(b, [&](int gi, int gj) { return phi_at(a, gi, gj); }, bx, by, bi0, bi1, bj0, bj1);
       if ((ax.empty() && ay.empty()) || (bx.empty() && by.empty())) continue;
       // equal and opposite: both totals replaced by +-(F_a - F_b)/2, per direction, the
       // difference spread over the same faces in proportion to their |force|
@@ -138,13 +152,25 @@ void Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field
   for (const auto& sp : solids)
     for (int side = 0; side < 4; ++side) {
       if (!wall_[side]) continue;
+      // the pressure needs a cell centre closer than d to the wall; the layer visits the
+      // window plus one cell (and the left/bottom neighbours of those): skip the side
+      // when even the nearest of them is at least d away
+      const Solid& w = *sp;
+      double nearest = 0.0;
+      switch (side) {
+        case Left: nearest = (w.i0() - 2 + 0.5) * g_.dx; break;
+        case Right: nearest = (nx - (w.i0() + w.ni()) - 0.5) * g_.dx; break;
+        case Bottom: nearest = (w.j0() - 2 + 0.5) * g_.dx; break;
+        default: nearest = (ny - (w.j0() + w.nj()) - 0.5) * g_.dx; break;
+      }
+      if (nearest >= d) continue;
       layer(*sp,
             [&](int gi, int gj) {
               double dist, nx_, ny_;
               side_geometry(g_, side, gi, gj, dist, nx_, ny_);
               return dist;
             },
-            ax, ay);
+            ax, ay, -1, nx, -1, ny);
       double t[2] = {0, 0};
       apply(ax, ay, 0.0, 0.0, t);
     }
