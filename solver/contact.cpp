@@ -219,13 +219,11 @@ void Contact::close_rebound(double t, int solid, WallState& w, const char* event
   w.pending = false;
 }
 
-void Contact::observe(double t, const std::vector<std::unique_ptr<Solid>>& solids, const Field& u,
-                      const Field& v) {
+void Contact::observe(double t, const std::vector<std::unique_ptr<Solid>>& solids,
+                      const std::vector<SolidDiagnostics>& diag) {
   const size_t n = solids.size();
   // hysteresis: a contact starts when the gap falls below d, ends when it exceeds d + dx/4
   const double d_on = d_, d_off = d_ + 0.25 * g_.dx;
-  std::vector<SolidDiagnostics> diag(n);
-  for (size_t i = 0; i < n; ++i) diag[i] = solids[i]->diagnostics(u, v);
   for (size_t i = 0; i < n; ++i) {
     gap_solid_[i] = sentinel_;
     gap_wall_[i] = sentinel_;

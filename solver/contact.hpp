@@ -107,9 +107,10 @@ class Contact {
   double wall_gap(const Solid& s, int side) const;
   double sentinel() const { return sentinel_; }
 
-  /// After each step: gaps, contact state and events. u, v: cell velocity.
-  void observe(double t, const std::vector<std::unique_ptr<Solid>>& solids, const Field& u,
-               const Field& v);
+  /// After each step: gaps, contact state and events. diag[i]: Solid::diagnostics of
+  /// solids[i] at time t (computed once per step by the caller, which also writes them).
+  void observe(double t, const std::vector<std::unique_ptr<Solid>>& solids,
+               const std::vector<SolidDiagnostics>& diag);
   /// At the end of a run: restitution of a rebound still being tracked.
   void finish(double t);
   double gap_solid(int i) const { return gap_solid_.at(i); }

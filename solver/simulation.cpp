@@ -67,7 +67,8 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
       cfx_.resize(nx + 1, ny, ng);
       cfy_.resize(nx, ny + 1, ng);
     }
-    contact_->observe(t_, solids_, u_, v_);
+    contact_->observe(t_, solids_, solid_diagnostics());
+    solid_diag_step_ = -1;  // u_mut()/v_mut() may still change the initial state
   }
 }
 
@@ -354,7 +355,7 @@ double Simulation::step(double dt) {
     }
     if (contact_) {
       ScopedPhase ph(timers_, "contact");
-      contact_->observe(t_, solids_, u_, v_);
+      contact_->observe(t_, solids_, solid_diagnostics());
     }
     return dt;
   }
@@ -439,7 +440,7 @@ double Simulation::step(double dt) {
   ++nstep_;
   if (contact_) {
     ScopedPhase ph(timers_, "contact");
-    contact_->observe(t_, solids_, u_, v_);
+    contact_->observe(t_, solids_, solid_diagnostics());
   }
   return dt;
 }
@@ -548,6 +549,17 @@ std::vector<std::string> Simulation::diagnostic_columns() const {
   return c;
 }
 
+const std::vector<SolidDiagnostics>& Simulation::solid_diagnostics() const {
+  // keyed by the step count: the state changes only in step() (and through u_mut()/v_mut()
+  // before the first step, which the -1 of the constructor's evaluation below covers)
+  if (solid_diag_step_ != nstep_ || solid_diag_.size() != solids_.size()) {
+    solid_diag_.resize(solids_.size());
+    for (size_t k = 0; k < solids_.size(); ++k) solid_diag_[k] = solids_[k]->diagnostics(u_, v_);
+    solid_diag_step_ = nstep_;
+  }
+  return solid_diag_;
+}
+
 std::vector<double> Simulation::diagnostic_values(double last_dt, double wall) const {
   const double ke = kinetic_energy();
   std::vector<double> r{double(nstep_), t_, last_dt, ke, max_face_divergence(),
@@ -557,8 +569,9 @@ std::vector<double> Simulation::diagnostic_values(double last_dt, double wall) c
     r.push_back(ke + elastic_energy_);
     r.push_back(contact_->energy());
   }
+  const std::vector<SolidDiagnostics>& diag = solid_diagnostics();
   for (size_t k = 0; k < solids_.size(); ++k) {
-    const SolidDiagnostics d = solids_[k]->diagnostics(u_, v_);
+    const SolidDiagnostics& d = diag[k];
     for (double q : {d.area, d.cx, d.cy, d.u, d.v, d.sigma_max, contact_->gap_solid(int(k)),
                      contact_->gap_wall(int(k))})
       r.push_back(q);

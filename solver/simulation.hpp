@@ -102,6 +102,9 @@ class Simulation {
   /// Force of the solid stresses (conservative or not) into fx_, fy_ (which it overwrites).
   void solid_force();
   void impose_prescribed_velocity(double t);
+  /// Solid::diagnostics of every solid for the current state, computed once per step and
+  /// shared by the contact log and the diagnostics.csv row.
+  const std::vector<SolidDiagnostics>& solid_diagnostics() const;
   std::vector<std::string> diagnostic_columns() const;
   std::vector<double> diagnostic_values(double last_dt, double wall) const;
   void solid_output_fields(Field& phi, Field& xix, Field& xiy, Field& normal) const;
@@ -123,6 +126,8 @@ class Simulation {
   Field mx_, my_, kx_, ky_, sx_, sy_, fx_, fy_, k2x_, k2y_, k3x_, k3y_, k4x_, k4y_;
   Field gxf_, gyf_;                        // face accelerations G_f of eqs. (5.3), (5.7)
   std::vector<std::unique_ptr<Solid>> solids_;
+  mutable std::vector<SolidDiagnostics> solid_diag_;  ///< cache of solid_diagnostics()
+  mutable long solid_diag_step_ = -1;                 ///< the step it belongs to (-1: none)
   Field sxx_, sxy_, syy_;                  // blended solid stress (global, if any solid is elastic)
   double elastic_energy_ = 0.0;
   bool prescribed_depends_on_time_ = false;  ///< flow = "prescribed" with an expression of t
