@@ -8,13 +8,20 @@
 //   [uf_{i+1/2} (q_{i+1} - q_i) + uf_{i-1/2} (q_i - q_{i-1})] / (2 dx) + (same in y),
 // a second-order central scheme that is exact for affine q when u_f is the exact velocity
 // of a rigid motion (the Zalesak test measures only the time-integration error).
+// With XiFlux::Superbee or XiFlux::VanLeer the face values are limited upwind (Superbee as
+// in kernels/advection.hpp, or van Leer's smooth limiter) in the same form,
+// [ue (q_e - q_i) + uw (q_i - q_w)] / dx: still exact for affine q (r = 1 gives the central
+// face value), first order at grid-scale oscillations, which they damp. They read two ghost
+// layers of xi.
 #include "solver/field.hpp"
 
 namespace refmap {
 
+enum class XiFlux { Central, Superbee, VanLeer };
+
 /// k = -H u.grad(xi) for both components on a window (local (i, j) = global (i0+i, j0+j));
 /// uf, vf are the global face-velocity views; one ghost layer of xi is read.
 void reference_map_rhs(CView xi_x, CView xi_y, CView phi, CView uf, CView vf, int ni, int nj,
-                       int i0, int j0, double dx, View kx, View ky);
+                       int i0, int j0, double dx, View kx, View ky, XiFlux flux = XiFlux::Central);
 
 }  // namespace refmap

@@ -39,6 +39,7 @@ void neo_hookean_stress(CView xi_x, CView xi_y, CView phi, int ni, int nj, doubl
 
 double blend_stress(CView sxx, CView sxy, CView syy, CView phi, int ni, int nj, double dx,
                     double w_t, double mu_s, View gxx, View gxy, View gyy, int i0, int j0) {
+  const double inv2mu = mu_s > 0.0 ? 0.5 / mu_s : 0.0;
   const double e = parallel_rows_sum(0, nj, [&](int j) {
     double en = 0.0;
     for (int i = 0; i < ni; ++i) {
@@ -48,11 +49,16 @@ double blend_stress(CView sxx, CView sxy, CView syy, CView phi, int ni, int nj, 
       gxx(i0 + i, j0 + j) += s * sxx(i, j);
       gxy(i0 + i, j0 + j) += s * sxy(i, j);
       gyy(i0 + i, j0 + j) += s * syy(i, j);
-      en += s * (sxx(i, j) + syy(i, j));
+      // isochoric strain energy mu_s (tr b / sqrt(det b) - 2) >= 0: equal to mu_s (tr b - 2)
+      // when det b = 1 (incompressible), and blind to the volume drift of the discrete xi,
+      // whose isotropic stress is taken by the pressure
+      const double bxx = 1.0 + sxx(i, j) * inv2mu, byy = 1.0 + syy(i, j) * inv2mu;
+      const double bxy = sxy(i, j) * inv2mu, det = bxx * byy - bxy * bxy;
+      en += s * (det > 0.0 ? (bxx + byy) / std::sqrt(det) - 2.0 : bxx + byy - 2.0);
     }
     return en;
   });
-  return mu_s > 0.0 ? 0.5 * e * dx * dx : 0.0;  // (1-H) mu_s (tr b - 2) = (1-H) tr(sigma)/2
+  return mu_s > 0.0 ? mu_s * e * dx * dx : 0.0;
 }
 
 void blend_stress_divergence(CView sxx, CView sxy, CView syy, CView phi, int ni, int nj,

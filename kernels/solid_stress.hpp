@@ -43,8 +43,10 @@ void neo_hookean_stress(CView xi_x, CView xi_y, CView phi, int ni, int nj, doubl
 
 /// Conservative blending, eq. (3.6): S(i0+i, j0+j) += (1 - H(phi)) sigma_s(i, j) on the
 /// window, H of half-width w_t. Returns the elastic energy
-/// sum (1 - H) mu_s (tr b - 2) dx^2 (tr C - 3 with unit out-of-plane stretch), using
-/// tr b - 2 = tr(sigma_s) / (2 mu_s).
+/// sum (1 - H) mu_s (tr b / sqrt(det b) - 2) dx^2, b = I + sigma_s / (2 mu_s): the isochoric
+/// neo-Hookean energy (tr C - 3 with unit out-of-plane stretch when det b = 1, which the
+/// continuous map keeps). It is >= 0; the plain mu_s (tr b - 2) went negative when the
+/// discrete xi drifted in volume (det b < 1), an isotropic part the pressure takes.
 double blend_stress(CView sxx, CView sxy, CView syy, CView phi, int ni, int nj, double dx,
                     double w_t, double mu_s, View gxx, View gxy, View gyy, int i0, int j0);
 

@@ -65,6 +65,10 @@ struct SolidsOptions {
   /// the 2 dx-wide cell form leaves undamped in an inviscid solid, but was seen to gain
   /// energy in the disc-in-Taylor-Green case; see kernels/solid_stress.hpp)
   std::string stress_discretisation = "cell";
+  /// face values of xi in its advection (eq. 3.3): "central" (the paper's), "vanleer" or
+  /// "superbee" (limited upwind: damp grid-scale xi oscillations where the solid moves; all
+  /// three exact for an affine xi; see README, Method notes)
+  std::string xi_advection = "vanleer";
   double solid_cfl = 0.5;   ///< P of section 4: dt <= P dx / sqrt(2 mu_s / rho_s)
   bool reinitialise = true; ///< fast-marching reinitialisation of phi0(xi)
   double pde_tol = 1e-8;    ///< PDE baseline: stop when max |change| per iteration < tol * (largest known |xi|)

@@ -207,15 +207,22 @@ double Contact::wall_gap(const Solid& s, int side) const {
   return gap;
 }
 
-void Contact::emit(double t, int solid, const char* what, double value) {
-  events_.push_back({t, solid, what, value});
+namespace {
+const char* wall_name(int side) {
+  static const char* names[4] = {"wall_left", "wall_right", "wall_bottom", "wall_top"};
+  return names[side];
+}
+}  // namespace
+
+void Contact::emit(double t, int solid, const char* what, double value, const std::string& with) {
+  events_.push_back({t, solid, what, value, with});
 }
 
-void Contact::close_rebound(double t, int solid, WallState& w, const char* event) {
+void Contact::close_rebound(double t, int solid, int side, WallState& w, const char* event) {
   // restitution = -v_after / v_before: v_before the most negative normal velocity
   // (towards the wall) of the approach, v_after the largest normal velocity from the start
   // of the contact until the rebound ends; only for a real approach (v_before < 0)
-  if (w.v_before < 0.0) emit(t, solid, event, -w.vmax / w.v_before);
+  if (w.v_before < 0.0) emit(t, solid, event, -w.vmax / w.v_before, wall_name(side));
   w.pending = false;
 }
 
@@ -242,8 +249,8 @@ void Contact::observe(double t, const std::vector<std::unique_ptr<Solid>>& solid
         if (e > 0) { ex /= e; ey /= e; }
         const double vrel = (diag[b].u - diag[a].u) * ex + (diag[b].v - diag[a].v) * ey;
         const char* what = now ? "contact_start" : "contact_end";
-        emit(t, int(a), what, vrel);
-        emit(t, int(b), what, vrel);
+        emit(t, int(a), what, vrel, solids[b]->spec().name);
+        emit(t, int(b), what, vrel, solids[a]->spec().name);
         ps.in_contact = now;
       }
     }
@@ -261,14 +268,14 @@ void Contact::observe(double t, const std::vector<std::unique_ptr<Solid>>& solid
         w.vmin = std::min(w.vmin, vn);  // the approach: min since the last contact_end
         if (w.pending) {
           w.vmax = std::max(w.vmax, vn);
-          if (vn < 0.0) close_rebound(t, int(i), w);  // moving back towards the wall
+          if (vn < 0.0) close_rebound(t, int(i), side, w);  // moving back towards the wall
         }
         if (gap < d_on) {
-          if (w.pending) close_rebound(t, int(i), w);
+          if (w.pending) close_rebound(t, int(i), side, w);
           w.in_contact = true;
           w.v_before = std::min(w.vmin, vn);
           w.vmax = vn;
-          emit(t, int(i), "contact_start", vn);
+          emit(t, int(i), "contact_start", vn, wall_name(side));
         }
       } else {
         w.vmax = std::max(w.vmax, vn);
@@ -276,7 +283,7 @@ void Contact::observe(double t, const std::vector<std::unique_ptr<Solid>>& solid
           w.in_contact = false;
           w.pending = true;
           w.vmin = vn;
-          emit(t, int(i), "contact_end", vn);
+          emit(t, int(i), "contact_end", vn, wall_name(side));
         }
       }
     }
@@ -284,13 +291,15 @@ void Contact::observe(double t, const std::vector<std::unique_ptr<Solid>>& solid
 
 void Contact::finish(double t) {
   for (size_t i = 0; i < wall_state_.size(); ++i)
-    for (auto& w : wall_state_[i])
+    for (int side = 0; side < 4; ++side) {
+      auto& w = wall_state_[i][side];
       if (w.pending || w.in_contact) {
         // the run ended during a contact or before the rebound was over: the value is
         // only a lower bound of the bounce's restitution, so it gets its own event name
-        close_rebound(t, int(i), w, "restitution_unfinished");
+        close_rebound(t, int(i), side, w, "restitution_unfinished");
         if (w.in_contact) w.v_before = 0.0;  // reported once
       }
+    }
 }
 
 }  // namespace refmap

@@ -80,6 +80,7 @@ struct ContactEvent {
   int solid = 0;
   std::string event;  ///< "contact_start", "contact_end", "restitution"
   double value = 0.0;
+  std::string with;   ///< the obstacle: "wall_left", "wall_right", "wall_bottom", "wall_top" or the other solid's name
 };
 
 class Contact {
@@ -128,8 +129,8 @@ class Contact {
     bool started = false;
   };
   struct PairState { bool in_contact = false; };
-  void emit(double t, int solid, const char* what, double value);
-  void close_rebound(double t, int solid, WallState& w, const char* event = "restitution");
+  void emit(double t, int solid, const char* what, double value, const std::string& with);
+  void close_rebound(double t, int solid, int side, WallState& w, const char* event = "restitution");
 
   Grid g_;
   /// phi of s at a global cell, wrapped across periodic directions, +band outside.

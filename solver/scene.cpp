@@ -729,7 +729,7 @@ void parse_solids_options(const Ctx& ctx, const Table& top, Config& cfg) {
   const toml::table* tp = top.table("solids", false);
   if (!tp) return;
   Table s(ctx, *tp, "solids");
-  s.allow({"extrapolation", "band", "transition", "conservative", "stress_discretisation", "solid_cfl",
+  s.allow({"extrapolation", "band", "transition", "conservative", "stress_discretisation", "xi_advection", "solid_cfl",
            "reinitialise", "pde_tol", "pde_max_iter"});
   SolidsOptions& o = cfg.solid_opt;
   o.extrapolation = s.choice("extrapolation", {"lsq", "pde"}, o.extrapolation);
@@ -747,6 +747,7 @@ void parse_solids_options(const Ctx& ctx, const Table& top, Config& cfg) {
   }
   o.conservative = s.boolean("conservative", o.conservative);
   o.stress_discretisation = s.choice("stress_discretisation", {"face", "cell"}, o.stress_discretisation);
+  o.xi_advection = s.choice("xi_advection", {"central", "superbee", "vanleer"}, o.xi_advection);
   o.solid_cfl = s.number("solid_cfl", o.solid_cfl);
   s.require(o.solid_cfl > 0 && o.solid_cfl <= 2, "solid_cfl", "must be in (0, 2], got " + fmt_num(o.solid_cfl));
   o.reinitialise = s.boolean("reinitialise", o.reinitialise);

@@ -730,9 +730,9 @@ RunSummary Simulation::run(const RunOptions& opt) {
     if (output) {
       std::FILE* f = std::fopen((fs::path(opt.out_dir) / "events.csv").string().c_str(), "w");
       if (!f) throw std::runtime_error("cannot write " + (fs::path(opt.out_dir) / "events.csv").string());
-      std::fprintf(f, "time,solid,event,value\n");
+      std::fprintf(f, "time,solid,event,value,with\n");
       for (const ContactEvent& e : contact_->events())
-        std::fprintf(f, "%.10g,%d,%s,%.10g\n", e.time, e.solid, e.event.c_str(), e.value);
+        std::fprintf(f, "%.10g,%d,%s,%.10g,%s\n", e.time, e.solid, e.event.c_str(), e.value, e.with.c_str());
       std::fclose(f);
     }
   }

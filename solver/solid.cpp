@@ -110,7 +110,10 @@ void Solid::advect(const Field& uf, const Field& vf, double dt) {
   auto rhs = [&](Field& kx, Field& ky, bool re_extrapolate) {
     if (re_extrapolate) extrapolate();
     reference_map_rhs(xi_x_.view(), xi_y_.view(), phi_.view(), uf.view(), vf.view(), ni, nj, i0_,
-                      j0_, grid_.dx, kx.view(), ky.view());
+                      j0_, grid_.dx, kx.view(), ky.view(),
+                      opt_.xi_advection == "superbee"  ? XiFlux::Superbee
+                      : opt_.xi_advection == "vanleer" ? XiFlux::VanLeer
+                                                       : XiFlux::Central);
   };
   auto stage = [&](const Field& kx, const Field& ky, double c) {
     parallel_rows(0, nj, [&](int j) {
