@@ -237,7 +237,8 @@ Transfer1D build_transfer(const std::vector<double>& cf, const std::vector<doubl
 }
 
 std::size_t scratch_per_thread(int nxf, int nxc) {
-  const std::size_t restrict_need = round8(nxf) + 8 * round8(nxc);
+  // residual row + 8 restricted rows (+ one coarse row for the fused prolongation)
+  const std::size_t restrict_need = round8(nxf) + 9 * round8(nxc);
   const std::size_t jacobi_need = 4 * round8(nxf + 2);
   return round8(std::max({restrict_need, jacobi_need, round8(nxc), std::size_t(8)}));
 }
@@ -277,22 +278,132 @@ inline double residual_row_norm2(const Stencil& s, CView x, CView f, int j) {
   return a;
 }
 
+/// Prolongation of one fine row: x(., r) += P x_c (the row body of prolong_add).
+inline void prolong_fine_row(const Stencil& s, const Transfer1D& trx, const Transfer1D& try_,
+                             CView xc, View x, int r, double* __restrict tmp) {
+  const int ncx = trx.nc;
+  const double a = try_.w0[r], b = try_.w1[r];
+  const double* __restrict c0 = &xc(0, try_.p0[r]);
+  const double* __restrict c1 = &xc(0, try_.p1[r]);
+#pragma omp simd
+  for (int I = 0; I < ncx; ++I) tmp[I] = a * c0[I] + b * c1[I];
+  double* xr = &x(0, r);
+  prolong_row(trx, tmp, xr);
+  ghost_cols(s, xr);
+}
+
+/// First and last fine row with a nonzero restriction weight for coarse row J.
+inline void restrict_span(const Transfer1D& T, int J, int& lo, int& hi) {
+  constexpr int K = Transfer1D::K;
+  lo = T.nf;
+  hi = -1;
+  for (int k = 0; k < K; ++k)
+    if (T.rw[J * K + k] != 0.0) {
+      lo = std::min(lo, T.ri[J * K + k]);
+      hi = std::max(hi, T.ri[J * K + k]);
+    }
+}
+
+/// fc = P^T (f - L x) computed from a stream of fine rows r0, r0 + 1, ... (each row's
+/// residual is x-restricted into a ring of kRing slots); coarse row J is written as soon
+/// as its last fine row has arrived, with exactly the arithmetic of residual_restrict.
+/// Emits the coarse rows J in [J, J_end) whose fine rows all lie in the stream.
+struct RestrictStream {
+  static constexpr int kRing = 8;
+  const Stencil* s = nullptr;
+  CView x, f;
+  const Transfer1D* trx = nullptr;
+  const Transfer1D* try_ = nullptr;
+  View fc;
+  double* rrow = nullptr;   ///< fine residual row
+  double* ring = nullptr;   ///< kRing x slotW
+  std::size_t slotW = 0;
+  int r0 = 0, J = 0, J_end = 0, jlo = 0, jhi = 0;
+
+  void init(const Stencil& st, CView xv, CView fv, const Transfer1D& tx, const Transfer1D& ty,
+            View out, double* scratch) {
+    s = &st;
+    x = xv;
+    f = fv;
+    trx = &tx;
+    try_ = &ty;
+    fc = out;
+    rrow = scratch;
+    ring = scratch + round8(st.nx);
+    slotW = round8(tx.nc);
+  }
+  /// Start a stream at fine row `first`, emitting coarse rows J >= J_first with all their
+  /// fine rows >= first, up to (excluding) J_last.
+  void begin(int first, int J_first, int J_last) {
+    r0 = first;
+    J = J_first;
+    J_end = J_last;
+    while (J < J_end) {
+      restrict_span(*try_, J, jlo, jhi);
+      if (jlo >= r0) break;
+      ++J;
+    }
+  }
+  /// Fine row r (= previous + 1) has its final x on rows r-1..r+1.
+  void push(int r) {
+    constexpr int K = Transfer1D::K;
+    residual_row(*s, x, f, r, rrow);
+    restrict_row(*trx, rrow, ring + std::size_t(r % kRing) * slotW);
+    const int ncx = trx->nc;
+    while (J < J_end && jhi <= r) {
+      double* __restrict out = &fc(0, J);
+      for (int I = 0; I < ncx; ++I) out[I] = 0.0;
+      for (int k = 0; k < K; ++k) {
+        const double w = try_->rw[J * K + k];
+        if (w == 0.0) continue;
+        const double* __restrict src = ring + std::size_t(try_->ri[J * K + k] % kRing) * slotW;
+#pragma omp simd
+        for (int I = 0; I < ncx; ++I) out[I] += w * src[I];
+      }
+      if (++J < J_end) restrict_span(*try_, J, jlo, jhi);
+    }
+  }
+};
+
 /// Walls in y: all `sweeps` sweeps in ONE pass over memory. The 2*sweeps half-sweeps
 /// ("stages"; stage k has colour c1 + k mod 2) form a pipeline, stage k trailing stage
 /// k-1 by one row: at step j, stage k updates row j - k. Stage k on row r needs stage k-1
 /// on rows r-1..r+1 (done earlier in the same step or before) and must precede stage k+1
 /// on rows r-1..r+1 (done later) -- exactly the order of sequential sweeps, so the result
-/// is bitwise that of `sweeps` separate sweeps. With res2, a last stage S = 2*sweeps
-/// accumulates the squared residual of the final iterate, one row behind.
+/// is bitwise that of `sweeps` separate sweeps. Optional extra stages:
+///  * pin (prolongation) as stage 0, ahead of the sweeps: x(., r) += P x_c, bitwise
+///    prolong_add followed by the sweeps;
+///  * a last "residual" stage one row behind the last sweep: with res2 it accumulates
+///    ||f - L x||^2 of the final iterate; with pout it computes fc = P^T (f - L x)
+///    (RestrictStream), bitwise residual_restrict after the sweeps.
 /// Threads own row chunks [j0, j1). In the pipelined pass thread t does stage k on rows
 /// [j0 + k, j1 - k) (the whole range at the domain walls); the rows left over around each
 /// chunk boundary b (stage k: [b - k, b + k)) form a "valley" which thread t finishes after
-/// a barrier, stage by stage. Needs chunks of >= 2 * (stages + 1) rows.
+/// a barrier, stage by stage. The coarse rows of pout that need fine residual rows of a
+/// valley are then computed by the thread of that valley, recomputing the residual rows
+/// they need. Needs chunks of >= 2 * stages + 8 rows.
+struct PipeIn {
+  const Transfer1D* trx;
+  const Transfer1D* try_;
+  CView xc;
+};
+struct PipeOut {
+  const Transfer1D* trx;
+  const Transfer1D* try_;
+  View fc;
+};
+
 void rbgs_pipeline_walls(const Stencil& s, View x, CView f, int sweeps, int c1, double omega,
-                         double* res2) {
+                         double* res2, const PipeIn* pin = nullptr,
+                         const PipeOut* pout = nullptr, const Scratch* sc = nullptr) {
   const int S = 2 * sweeps, ny = s.ny;
-  const int stages = res2 ? S + 1 : S;
-  const int nt_want = team(s.threads, ny / (2 * stages));
+  const int k0 = pin ? 1 : 0;                // first sweep stage
+  const int kres = k0 + S;                   // residual stage (if any)
+  const bool tail = res2 || pout;
+  const int stages = kres + (tail ? 1 : 0);
+  int want = team(s.threads, ny / (2 * stages + 8));
+  if (sc) want = std::min(want, sc->nthreads);
+  const int nt_want = want;
   double acc = 0.0;
 #pragma omp parallel num_threads(nt_want) if (nt_want > 1) reduction(+ : acc)
   {
@@ -300,23 +411,60 @@ void rbgs_pipeline_walls(const Stencil& s, View x, CView f, int sweeps, int c1, 
     const int j0 = chunk_lo(ny, nt, t), j1 = chunk_lo(ny, nt, t + 1);
     const bool first = t == 0, last = t == nt - 1;
     const int jend = last ? j1 + stages - 1 : j1;
+    double* tmp = nullptr;
+    RestrictStream rs;
+    int ncy = 0;
+    if (pin) tmp = sc->thread(t) + round8(s.nx) + RestrictStream::kRing * round8(pin->trx->nc);
+    if (pout) {
+      rs.init(s, x, f, *pout->trx, *pout->try_, pout->fc, sc->thread(t));
+      ncy = pout->try_->nc;
+      rs.begin(first ? 0 : j0 + kres, 0, ncy);
+    }
+    auto stage = [&](int k, int r) {
+      if (k < k0)
+        prolong_fine_row(s, *pin->trx, *pin->try_, pin->xc, x, r, tmp);
+      else if (k < kres)
+        rb_row(s, x, f, r, (c1 + k - k0) & 1, omega);
+      else {
+        if (pout) rs.push(r);
+        if (res2) acc += residual_row_norm2(s, x, f, r);
+      }
+    };
     for (int j = j0; j < jend; ++j)
       for (int k = 0; k < stages; ++k) {
         const int r = j - k;
         const int lo = first ? 0 : j0 + k, hi = last ? ny : j1 - k;
         if (r < lo || r >= hi) continue;
-        if (k < S)
-          rb_row(s, x, f, r, (c1 + k) & 1, omega);
-        else
-          acc += residual_row_norm2(s, x, f, r);
+        stage(k, r);
       }
     if (nt > 1) {
 #pragma omp barrier
       if (!last) {
-        for (int k = 1; k < S; ++k)
-          for (int r = j1 - k; r < j1 + k; ++r) rb_row(s, x, f, r, (c1 + k) & 1, omega);
+        for (int k = 1; k < kres; ++k)  // stage 0 (prolongation or first sweep) has no valley
+          for (int r = j1 - k; r < j1 + k; ++r) rb_row(s, x, f, r, (c1 + k - k0) & 1, omega);
         if (res2)
-          for (int r = j1 - S; r < j1 + S; ++r) acc += residual_row_norm2(s, x, f, r);
+          for (int r = j1 - kres; r < j1 + kres; ++r) acc += residual_row_norm2(s, x, f, r);
+        if (pout) {
+          // coarse rows touching the fine residual rows [j1 - kres, j1 + kres) that no
+          // thread's pipelined pass covered
+          const int gap_lo = j1 - kres, gap_hi = j1 + kres;
+          int Ja = 0, lo = 0, hi = -1;
+          while (Ja < ncy) {
+            restrict_span(*pout->try_, Ja, lo, hi);
+            if (hi >= gap_lo) break;
+            ++Ja;
+          }
+          int Jb = Ja, rfirst = lo, rlast = lo - 1;
+          while (Jb < ncy) {
+            restrict_span(*pout->try_, Jb, lo, hi);
+            if (lo >= gap_hi) break;
+            rfirst = std::min(rfirst, lo);
+            rlast = std::max(rlast, hi);
+            ++Jb;
+          }
+          rs.begin(rfirst, Ja, Jb);
+          for (int r = rfirst; r <= rlast; ++r) rs.push(r);
+        }
       }
     }
   }
@@ -364,6 +512,30 @@ void smooth_rbgs(const Stencil& s, View x, CView f, int sweeps, bool black_first
     }
   }
   if (res2) *res2 = residual(s, x, f, View{});
+}
+
+void smooth_rbgs_restrict(const Stencil& s, View x, CView f, int sweeps, bool black_first,
+                          double omega, const Transfer1D& trx, const Transfer1D& try_, View fc,
+                          const Scratch& sc) {
+  if (sweeps > 0 && !s.py) {
+    const PipeOut po{&trx, &try_, fc};
+    rbgs_pipeline_walls(s, x, f, sweeps, black_first ? 1 : 0, omega, nullptr, nullptr, &po, &sc);
+    return;
+  }
+  smooth_rbgs(s, x, f, sweeps, black_first, omega);
+  residual_restrict(s, x, f, trx, try_, fc, sc);
+}
+
+void prolong_smooth_rbgs(const Stencil& s, const Transfer1D& trx, const Transfer1D& try_,
+                         CView xc, View x, CView f, int sweeps, bool black_first, double omega,
+                         const Scratch& sc, double* res2) {
+  if (sweeps > 0 && !s.py) {
+    const PipeIn pi{&trx, &try_, xc};
+    rbgs_pipeline_walls(s, x, f, sweeps, black_first ? 1 : 0, omega, res2, &pi, nullptr, &sc);
+    return;
+  }
+  prolong_add(s, trx, try_, xc, x, sc);
+  smooth_rbgs(s, x, f, sweeps, black_first, omega, res2);
 }
 
 void smooth_jacobi(const Stencil& s, View x, CView f, int sweeps, double omega,

@@ -93,6 +93,23 @@ void fill_ghosts(const Stencil& s, View x);
 void smooth_rbgs(const Stencil& s, View x, CView f, int sweeps, bool black_first,
                  double omega = 1.0, double* res2 = nullptr);
 
+/// smooth_rbgs (pre-smoothing) followed by fc = P^T (f - L x) (residual_restrict), with
+/// the same result bit for bit. Walls in y: one pass over memory -- the residual of each
+/// fine row is computed one row behind the last sweep and restricted at once, so neither
+/// the fine residual nor a second pass over x, f, tx, ty is needed. Periodic y: the two
+/// separate kernels.
+void smooth_rbgs_restrict(const Stencil& s, View x, CView f, int sweeps, bool black_first,
+                          double omega, const Transfer1D& trx, const Transfer1D& try_, View fc,
+                          const Scratch& sc);
+
+/// prolong_add (x += P xc) followed by smooth_rbgs (post-smoothing, res2 as there), with
+/// the same result bit for bit. Walls in y: one pass over memory, the prolongation of
+/// fine row r being the first stage of the smoothing pipeline, one row ahead of the first
+/// half-sweep. Periodic y: the two separate kernels.
+void prolong_smooth_rbgs(const Stencil& s, const Transfer1D& trx, const Transfer1D& try_,
+                         CView xc, View x, CView f, int sweeps, bool black_first, double omega,
+                         const Scratch& sc, double* res2 = nullptr);
+
 /// `sweeps` weighted-Jacobi sweeps x <- x + omega D^{-1} (f - L x), one pass per sweep
 /// (old rows kept in per-thread row buffers).
 void smooth_jacobi(const Stencil& s, View x, CView f, int sweeps, double omega,

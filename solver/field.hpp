@@ -1,7 +1,9 @@
 #pragma once
 // Structure-of-arrays storage: one Field per scalar component, a contiguous row-major
 // array (x fastest) with `ng` ghost layers all round; the row stride is a multiple of
-// 8 doubles and the allocation is 64-byte aligned.
+// 64 bytes, the allocation is 64-byte aligned and padded in front so that the first
+// interior element (0, j) of every row is 64-byte aligned (vector loads of a row's
+// interior then never straddle a cache line).
 // Cell-centred fields are nx x ny; x-face fields are (nx+1) x ny (face i is the left
 // face of cell i); y-face fields are nx x (ny+1). Kernels see a Field through View,
 // a pointer to element (0,0) plus the row stride.
@@ -53,8 +55,11 @@ class Array2 {
 
   void resize(int nx, int ny, int ng = 2, T value = T{}) {
     nx_ = nx; ny_ = ny; ng_ = ng;
-    // pad the row so each row starts 64-byte aligned (8 doubles)
-    stride_ = ((nx + 2 * ng + 63 / sizeof(T)) / (64 / sizeof(T))) * (64 / sizeof(T));
+    // interior element (0, j) of every row 64-byte aligned: `lead_` padding elements before
+    // the first ghost column, row stride a multiple of 64 bytes
+    constexpr int A = int(64 / sizeof(T));
+    lead_ = (A - ng % A) % A;
+    stride_ = ((lead_ + nx + 2 * ng + A - 1) / A) * A;
     data_.assign(std::size_t(stride_) * std::size_t(ny + 2 * ng), value);
   }
   int nx() const { return nx_; }
@@ -76,9 +81,9 @@ class Array2 {
 
  private:
   std::size_t idx(int i, int j) const {
-    return std::size_t(j + ng_) * std::size_t(stride_) + std::size_t(i + ng_);
+    return std::size_t(lead_) + std::size_t(j + ng_) * std::size_t(stride_) + std::size_t(i + ng_);
   }
-  int nx_ = 0, ny_ = 0, ng_ = 0;
+  int nx_ = 0, ny_ = 0, ng_ = 0, lead_ = 0;
   std::ptrdiff_t stride_ = 0;
   std::vector<T, AlignedAllocator<T>> data_;
 };

@@ -371,23 +371,43 @@ void MultigridHierarchy::smooth(int l, View x, CView f, int sweeps, bool post, d
   }
 }
 
+void MultigridHierarchy::pre_smooth_restrict(int l, View x, CView f) {
+  const Level& F = levels_[l];
+  const mg::Stencil s = stencil(l);
+  if (jacobi_ || pre_ <= 0) {
+    smooth(l, x, f, pre_, false, nullptr);
+    mg::residual_restrict(s, x, f, F.trx, F.try_, levels_[l + 1].f.view(), scratch_);
+  } else {
+    mg::smooth_rbgs_restrict(s, x, f, pre_, /*black_first=*/false, rb_omega_, F.trx, F.try_,
+                             levels_[l + 1].f.view(), scratch_);
+  }
+}
+
+void MultigridHierarchy::prolong_post_smooth(int l, View x, CView f, double* res2) {
+  const Level& F = levels_[l];
+  const mg::Stencil s = stencil(l);
+  if (jacobi_ || post_ <= 0) {
+    mg::prolong_add(s, F.trx, F.try_, levels_[l + 1].x.cview(), x, scratch_);
+    smooth(l, x, f, post_, true, res2);
+  } else {
+    mg::prolong_smooth_rbgs(s, F.trx, F.try_, levels_[l + 1].x.cview(), x, f, post_,
+                            /*black_first=*/symmetric_, rb_omega_, scratch_, res2);
+  }
+}
+
 void MultigridHierarchy::vcycle(int l, View x, CView f, double* res2) {
   if (l == num_levels() - 1) {
     coarse_solve(l, x, f);
     if (res2) *res2 = mg::residual(stencil(l), x, f, View{});
     return;
   }
-  Level& F = levels_[l];
   Level& C = levels_[l + 1];
-  const mg::Stencil s = stencil(l);
-  smooth(l, x, f, pre_, false, nullptr);
-  mg::residual_restrict(s, x, f, F.trx, F.try_, C.f.view(), scratch_);
+  pre_smooth_restrict(l, x, f);
   const mg::Stencil sc = stencil(l + 1);
   mg::fill(sc, C.x.view(), 0.0);
   mg::fill_ghosts(sc, C.x.view());
   vcycle(l + 1, C.x.view(), C.f.cview(), nullptr);
-  mg::prolong_add(s, F.trx, F.try_, C.x.cview(), x, scratch_);
-  smooth(l, x, f, post_, true, res2);
+  prolong_post_smooth(l, x, f, res2);
 }
 
 void MultigridHierarchy::fcycle(int l, View x, CView f, double* res2) {
@@ -396,18 +416,14 @@ void MultigridHierarchy::fcycle(int l, View x, CView f, double* res2) {
     if (res2) *res2 = mg::residual(stencil(l), x, f, View{});
     return;
   }
-  Level& F = levels_[l];
   Level& C = levels_[l + 1];
-  const mg::Stencil s = stencil(l);
-  smooth(l, x, f, pre_, false, nullptr);
-  mg::residual_restrict(s, x, f, F.trx, F.try_, C.f.view(), scratch_);
+  pre_smooth_restrict(l, x, f);
   const mg::Stencil sc = stencil(l + 1);
   mg::fill(sc, C.x.view(), 0.0);
   mg::fill_ghosts(sc, C.x.view());
   fcycle(l + 1, C.x.view(), C.f.cview(), nullptr);
   vcycle(l + 1, C.x.view(), C.f.cview(), nullptr);
-  mg::prolong_add(s, F.trx, F.try_, C.x.cview(), x, scratch_);
-  smooth(l, x, f, post_, true, res2);
+  prolong_post_smooth(l, x, f, res2);
 }
 
 void MultigridHierarchy::cycle(View x, CView f, bool f_cycle, double* res2) {

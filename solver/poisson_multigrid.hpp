@@ -35,6 +35,10 @@
 // path allocates in solve), right-hand side projected to zero sum, zero-mean solution.
 // With equal pre/post smoothing counts and symmetric = true the V-cycle is a symmetric
 // linear operator (used by mgpcg).
+// Passes over memory per level and cycle (red-black smoother, walls in y): two -- the
+// pre-smoothing sweeps with the residual restriction fused (mg::smooth_rbgs_restrict), and
+// the prolongation with the post-smoothing sweeps (mg::prolong_smooth_rbgs); the same
+// arithmetic as the separate kernels, so the same iterates bit for bit.
 #include <memory>
 #include <vector>
 
@@ -98,6 +102,10 @@ class MultigridHierarchy {
   void vcycle(int l, View x, CView f, double* res2);
   void fcycle(int l, View x, CView f, double* res2);
   void smooth(int l, View x, CView f, int sweeps, bool post, double* res2);
+  /// Pre-smoothing on level l and the restricted residual into level l+1's f (fused).
+  void pre_smooth_restrict(int l, View x, CView f);
+  /// x += P x_{l+1} and post-smoothing on level l (fused), res2 as in cycle().
+  void prolong_post_smooth(int l, View x, CView f, double* res2);
   void coarse_solve(int l, View x, CView f);
   void build_coarse_solver();
 
