@@ -278,7 +278,7 @@ inline double residual_row_norm2(const Stencil& s, CView x, CView f, int j) {
   return a;
 }
 
-/// Prolongation of one fine row: x(., r) += P x_c (the row body of prolong_add).
+/// Prolongation of one fine row: x(., r) += P x_c (prolong_add and the fused pass).
 inline void prolong_fine_row(const Stencil& s, const Transfer1D& trx, const Transfer1D& try_,
                              CView xc, View x, int r, double* __restrict tmp) {
   const int ncx = trx.nc;
@@ -608,24 +608,7 @@ double residual(const Stencil& s, CView x, CView f, View r) {
     }
   } else {
 #pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
-    for (int j = 0; j < ny; ++j) {
-      const double* xr = &x(0, j);
-      const double* xs = &x(0, j - 1);
-      const double* xn = &x(0, j + 1);
-      const double* fr = &f(0, j);
-      const double* t = &s.tx(0, j);
-      const double* ts = &s.ty(0, j);
-      const double* tn = &s.ty(0, j + 1);
-      double a = 0.0;
-#pragma omp simd reduction(+ : a)
-      for (int i = 0; i < nx; ++i) {
-        const double c = xr[i];
-        const double v = fr[i] - (t[i] * (xr[i - 1] - c) + t[i + 1] * (xr[i + 1] - c) +
-                                  ts[i] * (xs[i] - c) + tn[i] * (xn[i] - c));
-        a += v * v;
-      }
-      acc += a;
-    }
+    for (int j = 0; j < ny; ++j) acc += residual_row_norm2(s, x, f, j);
   }
   return acc;
 }
@@ -673,23 +656,13 @@ void residual_restrict(const Stencil& s, CView x, CView f, const Transfer1D& trx
 
 void prolong_add(const Stencil& fs, const Transfer1D& trx, const Transfer1D& try_, CView xc,
                  View xf, const Scratch& sc) {
-  const int ncx = trx.nc;
   const int nt_want = team(std::min(fs.threads, sc.nthreads), fs.ny);
 #pragma omp parallel num_threads(nt_want) if (nt_want > 1)
   {
     const int nt = omp_get_num_threads(), t = omp_get_thread_num();
     const int j0 = chunk_lo(fs.ny, nt, t), j1 = chunk_lo(fs.ny, nt, t + 1);
     double* __restrict tmp = sc.thread(t);
-    for (int j = j0; j < j1; ++j) {
-      const double a = try_.w0[j], b = try_.w1[j];
-      const double* __restrict c0 = &xc(0, try_.p0[j]);
-      const double* __restrict c1 = &xc(0, try_.p1[j]);
-#pragma omp simd
-      for (int I = 0; I < ncx; ++I) tmp[I] = a * c0[I] + b * c1[I];
-      double* xr = &xf(0, j);
-      prolong_row(trx, tmp, xr);
-      ghost_cols(fs, xr);
-    }
+    for (int j = j0; j < j1; ++j) prolong_fine_row(fs, trx, try_, xc, xf, j, tmp);
     if (fs.py) {
 #pragma omp barrier
 #pragma omp single
