@@ -12,22 +12,38 @@ namespace refmap {
 
 namespace {
 
-constexpr int kR = 5;  // max |di|, |dj| with di^2 + dj^2 <= 32 (radius 4 sqrt(2) cells)
-// half-width of stencil row dj (index dj + kR): floor(sqrt(32 - dj^2))
-constexpr int kHalf[2 * kR + 1] = {2, 4, 4, 5, 5, 5, 5, 5, 4, 4, 2};
+constexpr int kR = 5;  // max |di|, |dj| of the largest stencil, di^2 + dj^2 <= 32 (radius 4 sqrt(2))
 
 struct Domain { int ilo, ihi, jlo, jhi; };  // inclusive
 
-/// Plane fit at (i, j) over known cells (known == 1) in the radius-4r stencil, clipped to
+/// The fit stencil, offsets di^2 + dj^2 <= radius2 (2 <= radius2 <= 32): per row
+/// r = dj + kR its half-width floor(sqrt(radius2 - dj^2)) (-1: empty row) and the bit mask
+/// of that row in the 11-bit pattern of the fast path (bit di + 5).
+struct Stencil {
+  int half[2 * kR + 1];
+  unsigned mask[2 * kR + 1];
+  explicit Stencil(int radius2) {
+    for (int r = 0; r <= 2 * kR; ++r) {
+      const int dj = r - kR, rest = radius2 - dj * dj;
+      int m = -1;
+      while ((m + 1) * (m + 1) <= rest) ++m;  // floor(sqrt(rest)), -1 when rest < 0
+      half[r] = m;
+      mask[r] = m < 0 ? 0u : ((1u << (2 * m + 1)) - 1u) << (5 - m);
+    }
+  }
+};
+
+/// Plane fit at (i, j) over known cells (known == 1) in the fit stencil, clipped to
 /// the domain. Writes the extrapolated values; returns true when a lower-order fallback was
 /// used. General (scalar) path: stencils crossing the domain edge and degenerate fits.
 bool fit_cell_general(int i, int j, CView xx, CView xy, View2<const std::uint8_t> kn,
-                     const Domain& d, double& ox, double& oy) {
+                     const Domain& d, const Stencil& sten, double& ox, double& oy) {
   const int dj0 = std::max(-kR, d.jlo - j), dj1 = std::min(kR, d.jhi - j);
   std::int64_t n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
   double fx = 0, fxX = 0, fxY = 0, fy = 0, fyX = 0, fyY = 0;
   for (int dj = dj0; dj <= dj1; ++dj) {
-    const int m = kHalf[dj + kR];
+    const int m = sten.half[dj + kR];
+    if (m < 0) continue;
     const int a = std::max(-m, d.ilo - i), b = std::min(m, d.ihi - i);
     const std::uint8_t* kr = &kn(i, j + dj);
     const double* xr = &xx(i, j + dj);
@@ -106,10 +122,6 @@ constexpr PatTable make_pat_table() {
   return t;
 }
 constexpr PatTable kPat = make_pat_table();
-constexpr unsigned row_mask(int m) { return ((1u << (2 * m + 1)) - 1u) << (5 - m); }
-constexpr unsigned kRowMask[11] = {row_mask(2), row_mask(4), row_mask(4), row_mask(5),
-                                   row_mask(5), row_mask(5), row_mask(5), row_mask(5),
-                                   row_mask(4), row_mask(4), row_mask(2)};
 
 /// bit 0 of 8 consecutive bytes -> 8-bit pattern (byte k -> bit k)
 inline unsigned pack8(const std::uint8_t* p) {
@@ -134,7 +146,7 @@ const v4d kX[3] = {{-5, -4, -3, -2}, {-1, 0, 1, 2}, {2, 3, 4, 5}};
 
 [[gnu::always_inline]] inline bool fit_cell_fast(int i, int j, CView xx, CView xy,
                                                 View2<const std::uint8_t> kn, const Domain& d,
-                                                double& ox, double& oy) {
+                                                const Stencil& sten, double& ox, double& oy) {
   unsigned pat[2 * kR + 1];
   // A = sum T, B = sum r T, C = sum r^2 T over rows r = dj + 5 = 0..10 (T = kPat entry).
   // Field bounds: A: count <= 101, sum(di+16) <= 341, sum di^2 <= 1210; B <= 10 A;
@@ -142,7 +154,7 @@ const v4d kX[3] = {{-5, -4, -3, -2}, {-1, 0, 1, 2}, {2, 3, 4, 5}};
   std::uint64_t A = 0, B = 0, C = 0;
   const std::uint8_t* kr = &kn(i, j - kR);
   for (int r = 0; r <= 2 * kR; ++r, kr += kn.stride) {
-    const unsigned p = (pack8(kr - 5) | pack8(kr - 2) << 3) & kRowMask[r];
+    const unsigned p = (pack8(kr - 5) | pack8(kr - 2) << 3) & sten.mask[r];
     pat[r] = p;
     const std::uint64_t t = kPat.v[p];
     A += t;
@@ -160,7 +172,7 @@ const v4d kX[3] = {{-5, -4, -3, -2}, {-1, 0, 1, 2}, {2, 3, 4, 5}};
   const std::int64_t c01 = std::int64_t(sy) * sxy - std::int64_t(sx) * syy;
   const std::int64_t c02 = std::int64_t(sx) * sxy - std::int64_t(sxx) * sy;
   const std::int64_t det = n * c00 + sx * c01 + sy * c02;
-  if (det <= 0) return fit_cell_general(i, j, xx, xy, kn, d, ox, oy);
+  if (det <= 0) return fit_cell_general(i, j, xx, xy, kn, d, sten, ox, oy);
   const double a0 = double(c00), a1 = double(c01), a2 = double(c02);
   v4d ax[3] = {}, ay[3] = {};
   v4d wx[3];
@@ -194,10 +206,10 @@ const v4d kX[3] = {{-5, -4, -3, -2}, {-1, 0, 1, 2}, {2, 3, 4, 5}};
 
 [[gnu::always_inline]] inline bool fit_cell(int i, int j, CView xx, CView xy,
                                            View2<const std::uint8_t> kn, const Domain& d,
-                                           double& ox, double& oy) {
+                                           const Stencil& sten, double& ox, double& oy) {
   if (i - kR >= d.ilo && i + kR <= d.ihi && j - kR >= d.jlo && j + kR <= d.jhi)
-    return fit_cell_fast(i, j, xx, xy, kn, d, ox, oy);
-  return fit_cell_general(i, j, xx, xy, kn, d, ox, oy);
+    return fit_cell_fast(i, j, xx, xy, kn, d, sten, ox, oy);
+  return fit_cell_general(i, j, xx, xy, kn, d, sten, ox, oy);
 }
 
 }  // namespace
@@ -209,6 +221,7 @@ ExtrapStats extrapolate_lsq(View xi_x, View xi_y, View2<std::uint8_t> known, int
   LsqWorkspace local;
   LsqWorkspace& w = ws ? *ws : local;
   const Domain d{-ng, ni + ng - 1, -ng, nj + ng - 1};
+  const Stencil stencil(std::clamp(opt.radius2, 2, 32));
   const View2<const std::uint8_t> tgt = opt.target;
   const bool has_tgt = tgt.p != nullptr;
   auto allowed = [&](int i, int j) { return !has_tgt || tgt(i, j) != 0; };
@@ -252,7 +265,7 @@ ExtrapStats extrapolate_lsq(View xi_x, View xi_y, View2<std::uint8_t> known, int
     double* val = w.val.data();
 #pragma omp parallel for schedule(static) reduction(+ : nfb) if (n >= opt.parallel_min)
     for (long c = 0; c < n; ++c) {
-      nfb += fit_cell(cand[c].i, cand[c].j, cx, cy, kc, d, val[2 * c], val[2 * c + 1]);
+      nfb += fit_cell(cand[c].i, cand[c].j, cx, cy, kc, d, stencil, val[2 * c], val[2 * c + 1]);
     }
     for (long c = 0; c < n; ++c) {
       const int i = cand[c].i, j = cand[c].j;

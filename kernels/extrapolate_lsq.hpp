@@ -4,8 +4,10 @@
 // Pass p takes every unknown cell with a known edge or corner neighbour (as of the START of
 // the pass, so the cells of a pass are independent: OpenMP-parallel, deterministic), fits a
 // plane xi = a X + b Y + c by least squares to all cells known at the start of the pass
-// within radius 4r, r = sqrt(dx^2 + dy^2) (offsets di^2 + dj^2 <= 32, i.e. up to 100
-// cells), and stores c, the plane at the target. Coordinates are integer offsets from the
+// within the fit radius (offsets di^2 + dj^2 <= radius2), and stores c, the plane at the
+// target. The paper's radius is 4r, r = sqrt(dx^2 + dy^2) (radius2 = 32, up to 100 cells,
+// the default here); the solver uses 2r (radius2 = 8, a 5 x 5 block) by default, see
+// SolidsOptions::lsq_radius for why. Coordinates are integer offsets from the
 // target, so the moment sums and the 3x3 normal-matrix determinant are exact integers: the
 // fit is degenerate exactly when the known stencil cells are collinear (det == 0). One
 // factorisation (the first row of the cofactor matrix) serves both components.
@@ -27,6 +29,11 @@ namespace refmap {
 
 struct LsqOptions {
   int passes = 6;  ///< max passes = band width in cells (Algorithm 2 repeats until flag2)
+  /// squared fit radius in cells: known cells with di^2 + dj^2 <= radius2 enter the fit;
+  /// clamped to [2, 32]; 32 = the paper's 4 sqrt(2) dx. Below 8 (the 5 x 5 block) band
+  /// cells often see only collinear known cells and fall back to a line fit (not exact for
+  /// affine fields), so the solver allows 8..32.
+  int radius2 = 32;
   /// Optional flag2: only cells with target(i, j) != 0 may be filled (p == nullptr: any).
   /// Same window indexing as `known`.
   View2<const std::uint8_t> target{};

@@ -729,10 +729,14 @@ void parse_solids_options(const Ctx& ctx, const Table& top, Config& cfg) {
   const toml::table* tp = top.table("solids", false);
   if (!tp) return;
   Table s(ctx, *tp, "solids");
-  s.allow({"extrapolation", "band", "transition", "conservative", "stress_discretisation", "xi_advection", "solid_cfl",
+  s.allow({"extrapolation", "lsq_radius", "band", "transition", "conservative", "stress_discretisation", "xi_advection", "solid_cfl",
            "reinitialise", "pde_tol", "pde_max_iter"});
   SolidsOptions& o = cfg.solid_opt;
   o.extrapolation = s.choice("extrapolation", {"lsq", "pde"}, o.extrapolation);
+  o.lsq_radius = s.number("lsq_radius", o.lsq_radius);
+  s.require(o.lsq_radius * o.lsq_radius >= 8.0 - 1e-6 && o.lsq_radius * o.lsq_radius < 33.0, "lsq_radius",
+            "must be in [2.83, 5.74] (cells: from the 5 x 5 block, 2 sqrt(2), to the paper's 4 sqrt(2) = 5.66), "
+            "got " + fmt_num(o.lsq_radius));
   o.band = s.number("band", o.band);
   s.require(o.band > 1, "band", "must be > 1 (cells), got " + fmt_num(o.band));
   o.transition = s.number("transition", o.transition);

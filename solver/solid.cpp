@@ -167,6 +167,7 @@ void Solid::extrapolate() {
   } else {
     LsqOptions lo;
     lo.passes = passes;
+    lo.radius2 = int(std::floor(opt_.lsq_radius * opt_.lsq_radius + 1e-9));
     static thread_local LsqWorkspace ws;
     st = extrapolate_lsq(xi_x_.view(), xi_y_.view(), known_.view(), ni_, nj_, Grid::ng, grid_.dx,
                          lo, &ws);

@@ -8,7 +8,8 @@
 //  - a disc thrown at a wall without gravity comes to rest (kinetic energy < 1% of its
 //    start) without crossing the wall, area within 1%;
 //  - a disc falling onto a wall bounces (0 < e < 1), without energy gain through the
-//    contact, and the softer disc deforms more; the paper's "softer => lower restitution"
+//    contact or during the rebound (beyond 8% of the energy the fall released), and the
+//    softer disc deforms more; the paper's "softer => lower restitution"
 //    is asserted by a DISABLED test because this model gives the opposite (see README).
 #include <gtest/gtest.h>
 
@@ -225,7 +226,9 @@ TEST(ContactCollision, TwoSolidsInTaylorGreenCollideAndSeparate) {
 }
 
 TEST(ContactWall, MicrogravityImpactComesToRest) {
-  Config cfg = load_scene(scene_path("wall_microgravity.toml"), {"grid.nx=48", "grid.ny=48"});
+  // the scene's 64^2 (on 48^2 the kinetic energy at t = 3 is 0.66% of its start, not
+  // monotonically falling: too close to the 1% bound to say "at rest")
+  Config cfg = load_scene(scene_path("wall_microgravity.toml"));
   Simulation sim(cfg);
   const double a0 = area(sim, 0), ke0 = sim.kinetic_energy();
   double min_gap = 1e9, max_area_dev = 0;
@@ -235,7 +238,7 @@ TEST(ContactWall, MicrogravityImpactComesToRest) {
     max_area_dev = std::max(max_area_dev, std::abs(area(sim, 0) - a0) / a0);
   }
   const double ke = sim.kinetic_energy();
-  std::printf("[wall microgravity 48^2] KE(t=%.2f)/KE0 = %.3e, min wall gap %.4f (%.2f dx), max area "
+  std::printf("[wall microgravity 64^2] KE(t=%.2f)/KE0 = %.3e, min wall gap %.4f (%.2f dx), max area "
               "deviation %.3e\n", sim.time(), ke / ke0, min_gap, min_gap / sim.grid().dx, max_area_dev);
   EXPECT_LT(min_gap, sim.contact()->range());  // it reached the wall
   EXPECT_GE(min_gap, 0.0);
@@ -247,15 +250,18 @@ namespace {
 
 struct Bounce {
   double restitution = -1, max_aspect = 1, min_gap = 1e9, energy_gain = 0, contact_gain = 1e9, pressure = 0;
+  double max_rise = 0, released = 0;  // largest rise of E + elastic energy above its running minimum; E0 - min E
 };
 
 // The bounce scene at its default 64^2 to the end of the first rebound (t = 0.92: the first
-// rebounds peak at t ~ 0.77 (stiff) and 0.84 (soft), the second contacts start at t ~ 0.95 and
-// 1.05). Not 48^2: there (disc radius 7 cells) the stiff disc's energy grows without bound
-// after the first impact (x1.8 by t = 1.05), and at t = 0.85 the soft disc's rebound is not over. Energy: kinetic + gravitational
-// ((rho_s - rho_f) |g| area * height of the centroid) + contact potential.
-Bounce run_bounce(const std::string& scene) {
-  Config cfg = load_scene(scene_path(scene), {"time.end=0.92"});
+// contacts start at t ~ 0.52 and the rebounds are over by t ~ 0.8). Energy E: kinetic +
+// gravitational ((rho_s - rho_f) |g| area * height of the centroid) + contact potential.
+// With the viscous fluid the mechanical energy E + elastic can only fall; max_rise measures
+// how far the scheme breaks that, against the energy the fall released.
+Bounce run_bounce(const std::string& scene, const std::vector<std::string>& sets = {}) {
+  std::vector<std::string> all{"time.end=0.92"};
+  all.insert(all.end(), sets.begin(), sets.end());
+  Config cfg = load_scene(scene_path(scene), all);
   Simulation sim(cfg);
   const double drho = cfg.solids[0].density - cfg.rho_f, g = std::abs(cfg.gy);
   auto energy = [&]() {
@@ -265,12 +271,16 @@ Bounce run_bounce(const std::string& scene) {
   Bounce b;
   b.pressure = sim.contact()->pressure();
   const double e0 = energy();
-  double e_start = 0;
+  double e_start = 0, e_min = e0, running_min = e0;
   size_t seen = 0;
   while (sim.time() < cfg.t_end - 1e-12) {
     sim.step();
     const double e = energy();
     b.energy_gain = std::max(b.energy_gain, (e - e0) / e0);
+    const double total = e + sim.elastic_energy();
+    b.max_rise = std::max(b.max_rise, total - running_min);
+    running_min = std::min(running_min, total);
+    e_min = std::min(e_min, e);
     b.min_gap = std::min(b.min_gap, sim.contact()->gap_wall(0));
     b.max_aspect = std::max(b.max_aspect, aspect_ratio(sim, 0));
     const auto& ev = sim.contact()->events();
@@ -281,12 +291,15 @@ Bounce run_bounce(const std::string& scene) {
     }
   }
   sim.finish_events();
+  b.released = e0 - e_min;
   for (const auto& e : sim.contact()->events())
     if (e.event == "restitution" && b.restitution < 0) b.restitution = e.value;
-  std::printf("[bounce %s 64^2] contact pressure P = %.4g, restitution %.4f, min wall gap %.4f (%.2f dx), "
-              "max aspect ratio %.4f, max energy rise above start %.2e, relative energy change across the first contact %.3e\n",
-              scene.c_str(), b.pressure, b.restitution, b.min_gap, b.min_gap / sim.grid().dx, b.max_aspect,
-              b.energy_gain, b.contact_gain);
+  std::printf("[bounce %s 64^2 %s] contact pressure P = %.4g, restitution %.4f, min wall gap %.4f (%.2f dx), "
+              "max aspect ratio %.4f, max energy rise above start %.2e, relative energy change across the first contact %.3e, "
+              "max rise of the total energy above its running minimum %.3e = %.4f of the released %.4f\n",
+              scene.c_str(), sets.empty() ? "defaults" : sets[0].c_str(), b.pressure, b.restitution, b.min_gap,
+              b.min_gap / sim.grid().dx, b.max_aspect, b.energy_gain, b.contact_gain, b.max_rise,
+              b.max_rise / b.released, b.released);
   return b;
 }
 
@@ -303,6 +316,10 @@ TEST(ContactWall, BounceUnderGravity) {
     EXPECT_GE(b->min_gap, 0.0);
     EXPECT_LE(b->energy_gain, 1e-3);   // never above the initial energy
     EXPECT_LT(b->contact_gain, 0.0);   // no energy gain through the (first) contact
+    // nor during the rebound: measured 0.45 % (soft) and 4.0 % (stiff) of the energy released
+    // by the fall; with the paper's least-squares fit radius (solids.lsq_radius = 5.66) the
+    // rebound gained 22 % and 17 % of it (README, Method notes)
+    EXPECT_LT(b->max_rise, 0.08 * b->released);
   }
   // the softer solid deforms more
   EXPECT_GT(soft.max_aspect - 1.0, 2.0 * (stiff.max_aspect - 1.0));

@@ -100,14 +100,15 @@ std::vector<std::uint8_t> dilate(const Case& c, int p) {
   return out;
 }
 
-void check_lsq_linear(Case& c, int passes) {
+void check_lsq_linear(Case& c, int passes, int radius2 = 32) {
   LsqOptions o;
   o.passes = passes;
+  o.radius2 = radius2;
   const ExtrapStats s = c.lsq(o);
   long n = 0;
   const double err = c.max_err(lin_x, lin_y, &n);
-  std::printf("  LSQ linear N=%d: filled %ld, passes %d, fallbacks %ld, max err %.3e\n", c.N,
-              s.cells_filled, s.passes, s.fallbacks, err);
+  std::printf("  LSQ linear N=%d radius^2 %d: filled %ld, passes %d, fallbacks %ld, max err %.3e\n", c.N,
+              radius2, s.cells_filled, s.passes, s.fallbacks, err);
   EXPECT_EQ(s.passes, passes);
   EXPECT_EQ(n, s.cells_filled);
   EXPECT_LT(err, 1e-12 * 2.0);  // field scale O(1) (|xi| <= 2 on the unit square)
@@ -133,6 +134,42 @@ TEST(ExtrapolateLSQ, LinearExactDisc) {
 TEST(ExtrapolateLSQ, LinearExactZalesak) {
   Case c(100, zalesak_phi(), lin_x, lin_y);
   check_lsq_linear(c, 5);
+}
+
+TEST(ExtrapolateLSQ, LinearExactWithSmallerFitRadii) {
+  // the solver's default 2 sqrt(2) (a 5 x 5 block, also the smallest radius a scene may set:
+  // with radius^2 2, the 3 x 3 block, a band cell often sees only collinear known cells and
+  // falls back to a line fit, which is not exact for a plane)
+  for (int r2 : {8, 18}) {
+    Case d(100, disc_phi(), lin_x, lin_y);
+    check_lsq_linear(d, 6, r2);
+    Case z(100, zalesak_phi(), lin_x, lin_y);
+    check_lsq_linear(z, 6, r2);
+  }
+}
+
+TEST(ExtrapolateLSQ, FitRadiusSelectsTheStencil) {
+  // known: the half plane y < 0.25 of a 40^2 grid (rows j <= 9); one pass fills row 10.
+  // Perturbing the known cell (20, 5), at offset (0, -5) from (20, 10), changes the fit there
+  // only if 25 <= radius^2: with the paper's 32 it does, with 8 (the solver's default) it
+  // must not, and the cells 3 or more columns away must not change with either.
+  const Fn half = [](double, double y) { return y - 0.25; };
+  for (int r2 : {8, 32}) {
+    Case a(40, half, nl_x, nl_y), b(40, half, nl_x, nl_y);
+    b.xx(20, 5) += 1.0;
+    LsqOptions o;
+    o.passes = 1;
+    o.radius2 = r2;
+    a.lsq(o);
+    b.lsq(o);
+    const double d0 = std::fabs(b.xx(20, 10) - a.xx(20, 10));
+    const double d3 = std::fabs(b.xx(23, 10) - a.xx(23, 10));
+    std::printf("  LSQ radius^2 %d: change at (20, 10) %.3e, at (23, 10) %.3e\n", r2, d0, d3);
+    if (r2 == 8) EXPECT_EQ(d0, 0.0);
+    else EXPECT_GT(d0, 1e-3);
+    EXPECT_EQ(d3, 0.0);
+    EXPECT_EQ(b.xy(20, 10), a.xy(20, 10));
+  }
 }
 
 TEST(ExtrapolateLSQ, LinearExactZalesakHundredScale) {

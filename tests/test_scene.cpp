@@ -587,6 +587,7 @@ TEST_F(SceneFiles, SceneSolidsDefaultsAndShapes) {
   EXPECT_EQ(c.flow, "solve");
   EXPECT_TRUE(c.solids.empty());
   EXPECT_EQ(c.solid_opt.extrapolation, "lsq");
+  EXPECT_DOUBLE_EQ(c.solid_opt.lsq_radius * c.solid_opt.lsq_radius, 8.0);  // 2 sqrt(2): the 5 x 5 block
   EXPECT_EQ(c.solid_opt.band, 6.0);
   EXPECT_EQ(c.solid_opt.transition, 3.0);
   EXPECT_TRUE(c.solid_opt.conservative);
@@ -702,6 +703,9 @@ TEST_F(SceneFiles, SceneSolidErrorsMore) {
   EXPECT_HAS(error_of(base + "[solids]\nband = 5\ntransition = 4\n"), "solids.transition: must be < solids.band - 1 = 4");
   EXPECT_HAS(error_of(base + "[solids]\ntransition = 0\n"), "solids.transition: must be > 0");
   EXPECT_HAS(error_of(base + "[solids]\nsolid_cfl = 2.5\n"), "solids.solid_cfl: must be in (0, 2]");
+  EXPECT_HAS(error_of(base + "[solids]\nlsq_radius = 2\n"), "solids.lsq_radius: must be in [2.83, 5.74]");
+  EXPECT_HAS(error_of(base + "[solids]\nlsq_radius = 6\n"), "solids.lsq_radius: must be in [2.83, 5.74]");
+  EXPECT_EQ(load_scene(write(base + "[solids]\nlsq_radius = 5.66\n")).solid_opt.lsq_radius, 5.66);
   EXPECT_HAS(error_of(base + "[solids]\npde_tol = 0\n"), "solids.pde_tol: must be > 0");
   EXPECT_HAS(error_of(base + "[solids]\npde_max_iter = 0\n"), "solids.pde_max_iter: must be in [1,");
   EXPECT_HAS(error_of(base + "[solids]\nconservative = 1\n"), "solids.conservative: expected true or false");
