@@ -60,9 +60,8 @@ struct SolidsOptions {
   /// "lsq": radius of the plane fit, in cells; the known cells with offsets di^2 + dj^2 <=
   /// floor(lsq_radius^2) enter it. Default 2 sqrt(2) (a 5 x 5 block), half the paper's
   /// 4 sqrt(2): with the paper's radius a stiff solid translating through an inviscid
-  /// fluid gains energy without bound (the wide fit does not follow the grid-scale content
-  /// of xi near the interface, and the trailing edge advects the mismatch into the solid),
-  /// and impacts gain energy (README, Method notes). Both radii are exact for affine xi.
+  /// fluid gains energy without bound and impacts gain energy (README, Method notes; why
+  /// the wider fit feeds it is not established). Both radii are exact for affine xi.
   double lsq_radius = 2.0 * 1.4142135623730951;
   double band = 6.0;        ///< w_E, width of the extrapolated band, in cells
   double transition = 3.0;  ///< w_T, half-width of the smoothed Heaviside (eq. 3.5), in cells
