@@ -107,13 +107,13 @@ void Solid::advect(const Field& uf, const Field& vf, double dt) {
     for (Field* f : {&kx_, &ky_, &k2x_, &k2y_, &x0x_, &x0y_}) f->resize(ni, nj, Grid::ng);
   x0x_ = xi_x_;
   x0y_ = xi_y_;
+  const XiFlux flux = opt_.xi_advection == "superbee"  ? XiFlux::Superbee
+                      : opt_.xi_advection == "vanleer" ? XiFlux::VanLeer
+                                                       : XiFlux::Central;
   auto rhs = [&](Field& kx, Field& ky, bool re_extrapolate) {
     if (re_extrapolate) extrapolate();
     reference_map_rhs(xi_x_.view(), xi_y_.view(), phi_.view(), uf.view(), vf.view(), ni, nj, i0_,
-                      j0_, grid_.dx, kx.view(), ky.view(),
-                      opt_.xi_advection == "superbee"  ? XiFlux::Superbee
-                      : opt_.xi_advection == "vanleer" ? XiFlux::VanLeer
-                                                       : XiFlux::Central);
+                      j0_, grid_.dx, kx.view(), ky.view(), flux);
   };
   auto stage = [&](const Field& kx, const Field& ky, double c) {
     parallel_rows(0, nj, [&](int j) {
