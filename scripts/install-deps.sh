@@ -19,5 +19,23 @@ echo "install-deps: installing ${missing[*]}"
 SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi
 export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# Another installation may hold apt's locks (unattended upgrades, a second refmap command):
+# wait for them instead of failing at once with "Could not get lock". DPkg::Lock::Timeout
+# makes apt-get itself wait for the dpkg lock; the retry loop also covers the lists lock
+# of `apt-get update`, which that option does not always cover.
+apt_wait() {
+  local tries=0 log
+  log=$(mktemp)
+  until $SUDO apt-get -o DPkg::Lock::Timeout=600 "$@" 2>"$log"; do
+    if grep -q "Could not get lock\|Unable to acquire\|is another process using it" "$log" && [ $tries -lt 60 ]; then
+      tries=$((tries + 1))
+      echo "install-deps: apt is busy (another installation holds its lock); waiting 10 s ($tries/60)" >&2
+      sleep 10
+    else
+      cat "$log" >&2; rm -f "$log"; return 1
+    fi
+  done
+  cat "$log" >&2; rm -f "$log"
+}
+apt_wait update -qq
+apt_wait install -y -qq --no-install-recommends "${missing[@]}"
