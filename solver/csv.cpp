@@ -4,6 +4,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include <unistd.h>
+
 namespace refmap {
 
 CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> header, const std::string& comment_header)
@@ -13,6 +15,7 @@ CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> header, c
   file_.reset(std::fopen(path.c_str(), "w"));
   if (!file_)
     throw std::runtime_error("cannot open " + path + " for writing: " + (errno ? std::strerror(errno) : "open failed"));
+  std::setvbuf(file_.get(), nullptr, _IONBF, 0);  // rows are buffered in buf_ (flush() relies on it)
   if (!comment_header.empty()) {
     std::size_t start = 0;
     while (start <= comment_header.size()) {
@@ -51,6 +54,7 @@ CsvWriter& CsvWriter::operator=(CsvWriter&& o) noexcept {
     buf_ = std::move(o.buf_);
     last_flush_ = o.last_flush_;
     rows_ = o.rows_;
+    committed_ = o.committed_;
   }
   return *this;
 }
@@ -75,13 +79,23 @@ void CsvWriter::row(const std::vector<double>& values) {
 void CsvWriter::flush() {
   if (!file_) return;
   last_flush_ = std::chrono::steady_clock::now();
-  if (!buf_.empty()) {
-    const std::size_t n = std::fwrite(buf_.data(), 1, buf_.size(), file_.get());
-    const bool ok = n == buf_.size();
+  if (buf_.empty()) return;
+  // buf_ holds whole rows only; the stream is unbuffered (see the constructor), so what
+  // reached the file is known: on a short write (full disk, file size limit) the file is
+  // cut back to the end of the last whole row and the writer stops, rather than leave a
+  // half row that a later, successful write would glue to the next one.
+  errno = 0;
+  const std::size_t n = std::fwrite(buf_.data(), 1, buf_.size(), file_.get());
+  if (n != buf_.size() || std::fflush(file_.get()) != 0) {
+    const int err = errno;
+    if (::ftruncate(::fileno(file_.get()), off_t(committed_)) != 0) { /* the message below still holds */ }
+    file_.reset();
     buf_.clear();
-    if (!ok) throw std::runtime_error("write error on " + path_);
+    throw std::runtime_error("write error on " + path_ + ": " + (err ? std::strerror(err) : "short write") +
+                             " (the file ends on its last whole row)");
   }
-  if (std::fflush(file_.get()) != 0) throw std::runtime_error("write error on " + path_);
+  committed_ += buf_.size();
+  buf_.clear();
 }
 
 }  // namespace refmap

@@ -24,7 +24,9 @@ class CsvWriter {
   /// from the number of columns. Rows are buffered and reach the file at least once a
   /// second of wall time (checked on each row), on flush() and on destruction.
   void row(const std::vector<double>& values);
-  void flush();  ///< throws std::runtime_error on a write error
+  /// Throws std::runtime_error on a write error, after cutting the file back to its last
+  /// whole row; the writer then writes nothing more.
+  void flush();
 
   const std::string& path() const { return path_; }
   std::size_t columns() const { return header_.size(); }
@@ -38,6 +40,7 @@ class CsvWriter {
   std::string buf_;
   std::chrono::steady_clock::time_point last_flush_;
   long rows_ = 0;
+  std::size_t committed_ = 0;  ///< bytes known to be in the file (always whole lines)
 };
 
 }  // namespace refmap

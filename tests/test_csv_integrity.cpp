@@ -1,0 +1,74 @@
+// A full disk must leave diagnostics.csv ending on a whole row (issue: runs that
+// survive). The file size limit (RLIMIT_FSIZE) stands in for a full disk: a write past it
+// fails with EFBIG exactly as one past the free space fails with ENOSPC.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include "solver/csv.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct FileSizeLimit {
+  rlimit old{};
+  explicit FileSizeLimit(rlim_t bytes) {
+    getrlimit(RLIMIT_FSIZE, &old);
+    std::signal(SIGXFSZ, SIG_IGN);  // else the kernel kills the process at the limit
+    rlimit lim = old;
+    lim.rlim_cur = bytes;
+    setrlimit(RLIMIT_FSIZE, &lim);
+  }
+  ~FileSizeLimit() { setrlimit(RLIMIT_FSIZE, &old); }
+};
+
+}  // namespace
+
+TEST(CsvIntegrity, FullDiskLeavesWholeRows) {
+  const fs::path f = fs::temp_directory_path() / ("refmap_csv_full_" + std::to_string(::getpid()) + ".csv");
+  std::string error;
+  long rows_given = 0;
+  {
+    FileSizeLimit limit(1000);  // the 8-column rows below are ~100 bytes: the limit falls mid-row
+    refmap::CsvWriter w(f.string(), {"a", "b", "c", "d", "e", "f", "g", "h"}, "scene: full disk");
+    try {
+      for (int k = 0; k < 200; ++k) {
+        w.row({k * 1.0, 0.1 * k, 1.0 / 3.0, 2.0 / 7.0, 1e-9 * k, 3.14159, 2.71828, -k * 1.25});
+        ++rows_given;
+        w.flush();  // every row reaches the file: the limit is hit on a row boundary-free write
+      }
+    } catch (const std::runtime_error& e) {
+      error = e.what();
+    }
+  }
+  ASSERT_FALSE(error.empty()) << "the file size limit was never reached";
+  EXPECT_NE(error.find("last whole row"), std::string::npos) << error;
+  std::ifstream in(f);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), '\n') << "the file ends inside a row";
+  EXPECT_LE(text.size(), 1000u);
+  // every data line is whole: 8 fields
+  std::istringstream lines(text);
+  std::string line;
+  long data = 0;
+  while (std::getline(lines, line)) {
+    if (line.empty() || line[0] == '#' || line[0] == 'a') continue;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 7) << line;
+    ++data;
+  }
+  EXPECT_GT(data, 3);
+  EXPECT_LT(data, rows_given + 1);
+  fs::remove(f);
+}
