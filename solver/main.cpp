@@ -24,6 +24,7 @@
 #endif
 
 #include "solver/config.hpp"
+#include "solver/run.hpp"
 #include "solver/scene.hpp"
 #include "solver/simulation.hpp"
 
@@ -159,7 +160,7 @@ int cmd_run(const std::string& scene, std::string out, int threads, bool threads
   ro.quiet = quiet;
   if (warmup < 0) return error("--timing-warmup must be >= 0, got " + std::to_string(warmup), kExitUsage);
   ro.timing_warmup_steps = warmup;
-  const refmap::RunSummary s = sim.run(ro);
+  const refmap::RunSummary s = refmap::run(sim, ro);
 
   if (s.failed) {
     std::fflush(stdout);

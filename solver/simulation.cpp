@@ -3,10 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 
 #include "kernels/advection.hpp"
@@ -15,21 +12,13 @@
 #include "kernels/solid_stress.hpp"
 #include "kernels/viscous.hpp"
 #include "solver/boundary.hpp"
-#include "solver/csv.hpp"
 #include "solver/expression.hpp"
-#include "solver/probes.hpp"
-#include "solver/progress.hpp"
-#include "solver/vtk.hpp"
 
 namespace refmap {
 
 namespace {
 
 FaceBoundary face_boundary(const Config& c) { return {periodic_x(c.bc), periodic_y(c.bc)}; }
-
-double wall_seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 }  // namespace
 
@@ -297,152 +286,169 @@ void Simulation::add_contact_face_accel() {
   });
 }
 
-void Simulation::project(double dt) {
-  const Grid& g = cfg_.grid;
-  const FaceBoundary fb = face_boundary(cfg_);
-  {
-    ScopedPhase ph(timers_, "face velocities");
-    apply_velocity_bc(u_, v_, t_ + dt);
-    fill_scalar_ghosts(p_, cfg_.bc);
-    // step 5, eq. (5.3): Rhie-Chow-like face velocity with the old pressure and the body force
-    face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
-               g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, fb);
-    add_contact_face_accel();
-    predict_face_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), uf_.view(), vf_.view(),
-                          g.nx, g.ny, dt, fb);
-    face_divergence(uf_.view(), vf_.view(), rhs_.view(), g.nx, g.ny, g.dx, 1.0 / dt);
-  }
-  {
-    // step 6, eq. (5.4); dp from the previous step is the initial guess
-    ScopedPhase ph(timers_, "poisson");
-    last_stats_ = poisson_->solve(rhs_, dp_);
-  }
-  {
-    ScopedPhase ph(timers_, "projection");
-    fill_scalar_ghosts(dp_, cfg_.bc);
-    // step 7, eq. (5.5)
-    parallel_rows(0, g.ny, [&](int j) {
-      for (int i = 0; i < g.nx; ++i) p_(i, j) += dp_(i, j);
-    });
-    fill_scalar_ghosts(p_, cfg_.bc);
-    // step 8, eq. (5.6): exactly divergence-free face velocities
-    correct_face_velocity(uf_.view(), vf_.view(), dp_.view(), beta_x_.view(), beta_y_.view(),
-                          g.nx, g.ny, g.dx, dt, fb);
-    // step 9, eq. (5.7): cell velocities with the new pressure
-    face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
-               g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, fb);
-    add_contact_face_accel();
-    correct_cell_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny, dt);
-    apply_velocity_bc(u_, v_, t_ + dt);
-  }
-}
-
 double Simulation::step(double dt) {
-  const Grid& g = cfg_.grid;
-  const int nx = g.nx, ny = g.ny;
   if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
-  const FluxScheme scheme =
-      cfg_.advection == "superbee" ? FluxScheme::Superbee : FluxScheme::Central;
-
-  if (cfg_.flow == "prescribed") {  // kinematics only: move the solids in the imposed flow
-    update_solids(dt);
-    blend_material_fields();
-    t_ += dt;
-    ++nstep_;
-    if (prescribed_depends_on_time_) {
-      ScopedPhase ph(timers_, "prescribed flow");
-      impose_prescribed_velocity(t_);
-    }
-    if (contact_) {
-      ScopedPhase ph(timers_, "contact");
-      contact_->observe(t_, solids_, solid_diagnostics());
-    }
-    return dt;
-  }
+  if (cfg_.flow == "prescribed") return step_prescribed(dt);
   if (!solids_.empty()) {
-    // Algorithm 1, steps 1-3: advect and extrapolate xi, rebuild phi, new rho and mu
     rho_old_ = rho_;
-    update_solids(dt);
-    blend_material_fields();
+    move_solids(dt);                     // steps 1-3
   }
-
-  {
-    // step 4, eq. (5.1): momentum rho*u advected by the divergence-free face velocities of
-    // the previous step, RK-4 in time (the face velocities are frozen over the stages)
-    ScopedPhase ph(timers_, "advection");
-    const double t = t_;
-    parallel_rows(0, ny, [&](int j) {
-      for (int i = 0; i < nx; ++i) {
-        mx_(i, j) = rho_old_(i, j) * u_(i, j);
-        my_(i, j) = rho_old_(i, j) * v_(i, j);
-      }
-    });
-    auto rhs = [&](Field& qx, Field& qy, Field& kx, Field& ky) {
-      fill_vector_ghosts(qx, qy, cfg_.bc, t, cfg_.rho_f);
-      advect_rhs2(qx.view(), qy.view(), uf_.view(), vf_.view(), kx.view(), ky.view(), nx, ny,
-                  g.dx, scheme);
-    };
-    rhs(mx_, my_, kx_, ky_);
-    axpy_interior(mx_.view(), kx_.view(), 0.5 * dt, sx_.view(), nx, ny);
-    axpy_interior(my_.view(), ky_.view(), 0.5 * dt, sy_.view(), nx, ny);
-    rhs(sx_, sy_, k2x_, k2y_);
-    axpy_interior(mx_.view(), k2x_.view(), 0.5 * dt, sx_.view(), nx, ny);
-    axpy_interior(my_.view(), k2y_.view(), 0.5 * dt, sy_.view(), nx, ny);
-    rhs(sx_, sy_, k3x_, k3y_);
-    axpy_interior(mx_.view(), k3x_.view(), dt, sx_.view(), nx, ny);
-    axpy_interior(my_.view(), k3y_.view(), dt, sy_.view(), nx, ny);
-    rhs(sx_, sy_, k4x_, k4y_);
-    rk4_combine(mx_.view(), kx_.view(), k2x_.view(), k3x_.view(), k4x_.view(), dt, nx, ny);
-    rk4_combine(my_.view(), ky_.view(), k2y_.view(), k3y_.view(), k4y_.view(), dt, nx, ny);
-    // u* = (rho u)* / rho^{n+1}
-    parallel_rows(0, ny, [&](int j) {
-      for (int i = 0; i < nx; ++i) {
-        u_(i, j) = mx_(i, j) / rho_(i, j);
-        v_(i, j) = my_(i, j) / rho_(i, j);
-      }
-    });
-  }
-  {
-    // eq. (5.2): split viscous step, forward Euler, divergence of the (blended) stress
-    bool viscous = cfg_.mu_f > 0.0, elastic = sxx_.nx() > 0;
-    for (const auto& s : solids_) viscous = viscous || s->spec().viscosity > 0.0;
-    if (viscous || elastic) {
-      ScopedPhase ph(timers_, "viscous");
-      apply_velocity_bc(u_, v_, t_ + dt);
-      if (viscous) {
-        viscous_force(u_.view(), v_.view(), mu_.view(), fx_.view(), fy_.view(), nx, ny, g.dx);
-      } else {
-        fx_.fill(0.0);
-        fy_.fill(0.0);
-      }
-    }
-    if (elastic) {
-      ScopedPhase ph(timers_, "solid stress");
-      solid_force();
-    }
-    if (viscous || elastic)
-      apply_force(u_.view(), v_.view(), fx_.view(), fy_.view(), rho_.view(), dt, nx, ny);
-  }
-  if (!solids_.empty()) {
-    ScopedPhase ph(timers_, "poisson setup");
-    build_poisson_coefficients();
-  }
-  if (contact_ && contact_->force_enabled()) {
-    // contact force on the faces of the new configuration (solver/contact.hpp), applied
-    // with the pressure gradient and gravity in the balanced-force face accelerations
-    ScopedPhase ph(timers_, "contact");
-    cfx_.fill(0.0);
-    cfy_.fill(0.0);
-    contact_->add_force(solids_, cfx_, cfy_);
-  }
-  project(dt);
+  advect_momentum(dt);                   // step 4
+  apply_viscous_and_solid_stress(dt);
+  if (!solids_.empty()) setup_poisson();
+  if (contact_ && contact_->force_enabled()) compute_contact_force();
+  predict_face_velocities(dt);           // step 5
+  solve_pressure();                      // step 6
+  project(dt);                           // steps 7-9
   t_ += dt;
   ++nstep_;
-  if (contact_) {
-    ScopedPhase ph(timers_, "contact");
-    contact_->observe(t_, solids_, solid_diagnostics());
-  }
+  if (contact_) observe_contact();
   return dt;
+}
+
+double Simulation::step_prescribed(double dt) {
+  // kinematics only: move the solids in the imposed flow
+  move_solids(dt);
+  t_ += dt;
+  ++nstep_;
+  if (prescribed_depends_on_time_) {
+    ScopedPhase ph(timers_, "prescribed flow");
+    impose_prescribed_velocity(t_);
+  }
+  if (contact_) observe_contact();
+  return dt;
+}
+
+void Simulation::move_solids(double dt) {
+  // Algorithm 1, steps 1-3: advect and extrapolate xi, rebuild phi, new rho and mu
+  update_solids(dt);
+  blend_material_fields();
+}
+
+void Simulation::advect_momentum(double dt) {
+  // step 4, eq. (5.1): momentum rho*u advected by the divergence-free face velocities of
+  // the previous step, RK-4 in time (the face velocities are frozen over the stages)
+  ScopedPhase ph(timers_, "advection");
+  const Grid& g = cfg_.grid;
+  const int nx = g.nx, ny = g.ny;
+  const FluxScheme scheme =
+      cfg_.advection == "superbee" ? FluxScheme::Superbee : FluxScheme::Central;
+  const double t = t_;
+  parallel_rows(0, ny, [&](int j) {
+    for (int i = 0; i < nx; ++i) {
+      mx_(i, j) = rho_old_(i, j) * u_(i, j);
+      my_(i, j) = rho_old_(i, j) * v_(i, j);
+    }
+  });
+  auto rhs = [&](Field& qx, Field& qy, Field& kx, Field& ky) {
+    fill_vector_ghosts(qx, qy, cfg_.bc, t, cfg_.rho_f);
+    advect_rhs2(qx.view(), qy.view(), uf_.view(), vf_.view(), kx.view(), ky.view(), nx, ny,
+                g.dx, scheme);
+  };
+  rhs(mx_, my_, kx_, ky_);
+  axpy_interior(mx_.view(), kx_.view(), 0.5 * dt, sx_.view(), nx, ny);
+  axpy_interior(my_.view(), ky_.view(), 0.5 * dt, sy_.view(), nx, ny);
+  rhs(sx_, sy_, k2x_, k2y_);
+  axpy_interior(mx_.view(), k2x_.view(), 0.5 * dt, sx_.view(), nx, ny);
+  axpy_interior(my_.view(), k2y_.view(), 0.5 * dt, sy_.view(), nx, ny);
+  rhs(sx_, sy_, k3x_, k3y_);
+  axpy_interior(mx_.view(), k3x_.view(), dt, sx_.view(), nx, ny);
+  axpy_interior(my_.view(), k3y_.view(), dt, sy_.view(), nx, ny);
+  rhs(sx_, sy_, k4x_, k4y_);
+  rk4_combine(mx_.view(), kx_.view(), k2x_.view(), k3x_.view(), k4x_.view(), dt, nx, ny);
+  rk4_combine(my_.view(), ky_.view(), k2y_.view(), k3y_.view(), k4y_.view(), dt, nx, ny);
+  // u* = (rho u)* / rho^{n+1}
+  parallel_rows(0, ny, [&](int j) {
+    for (int i = 0; i < nx; ++i) {
+      u_(i, j) = mx_(i, j) / rho_(i, j);
+      v_(i, j) = my_(i, j) / rho_(i, j);
+    }
+  });
+}
+
+void Simulation::apply_viscous_and_solid_stress(double dt) {
+  // eq. (5.2): split viscous step, forward Euler, divergence of the (blended) stress
+  const Grid& g = cfg_.grid;
+  const int nx = g.nx, ny = g.ny;
+  bool viscous = cfg_.mu_f > 0.0, elastic = sxx_.nx() > 0;
+  for (const auto& s : solids_) viscous = viscous || s->spec().viscosity > 0.0;
+  if (viscous || elastic) {
+    ScopedPhase ph(timers_, "viscous");
+    apply_velocity_bc(u_, v_, t_ + dt);
+    if (viscous) {
+      viscous_force(u_.view(), v_.view(), mu_.view(), fx_.view(), fy_.view(), nx, ny, g.dx);
+    } else {
+      fx_.fill(0.0);
+      fy_.fill(0.0);
+    }
+  }
+  if (elastic) {
+    ScopedPhase ph(timers_, "solid stress");
+    solid_force();
+  }
+  if (viscous || elastic)
+    apply_force(u_.view(), v_.view(), fx_.view(), fy_.view(), rho_.view(), dt, nx, ny);
+}
+
+void Simulation::setup_poisson() {
+  ScopedPhase ph(timers_, "poisson setup");
+  build_poisson_coefficients();
+}
+
+void Simulation::compute_contact_force() {
+  // contact force on the faces of the new configuration (solver/contact.hpp), applied
+  // with the pressure gradient and gravity in the balanced-force face accelerations
+  ScopedPhase ph(timers_, "contact");
+  cfx_.fill(0.0);
+  cfy_.fill(0.0);
+  contact_->add_force(solids_, cfx_, cfy_);
+}
+
+void Simulation::predict_face_velocities(double dt) {
+  ScopedPhase ph(timers_, "face velocities");
+  const Grid& g = cfg_.grid;
+  const FaceBoundary fb = face_boundary(cfg_);
+  apply_velocity_bc(u_, v_, t_ + dt);
+  fill_scalar_ghosts(p_, cfg_.bc);
+  // step 5, eq. (5.3): Rhie-Chow-like face velocity with the old pressure and the body force
+  face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
+             g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, fb);
+  add_contact_face_accel();
+  predict_face_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), uf_.view(), vf_.view(),
+                        g.nx, g.ny, dt, fb);
+  face_divergence(uf_.view(), vf_.view(), rhs_.view(), g.nx, g.ny, g.dx, 1.0 / dt);
+}
+
+void Simulation::solve_pressure() {
+  // step 6, eq. (5.4); dp from the previous step is the initial guess
+  ScopedPhase ph(timers_, "poisson");
+  last_stats_ = poisson_->solve(rhs_, dp_);
+}
+
+void Simulation::project(double dt) {
+  ScopedPhase ph(timers_, "projection");
+  const Grid& g = cfg_.grid;
+  const FaceBoundary fb = face_boundary(cfg_);
+  fill_scalar_ghosts(dp_, cfg_.bc);
+  // step 7, eq. (5.5)
+  parallel_rows(0, g.ny, [&](int j) {
+    for (int i = 0; i < g.nx; ++i) p_(i, j) += dp_(i, j);
+  });
+  fill_scalar_ghosts(p_, cfg_.bc);
+  // step 8, eq. (5.6): exactly divergence-free face velocities
+  correct_face_velocity(uf_.view(), vf_.view(), dp_.view(), beta_x_.view(), beta_y_.view(),
+                        g.nx, g.ny, g.dx, dt, fb);
+  // step 9, eq. (5.7): cell velocities with the new pressure
+  face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
+             g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, fb);
+  add_contact_face_accel();
+  correct_cell_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny, dt);
+  apply_velocity_bc(u_, v_, t_ + dt);
+}
+
+void Simulation::observe_contact() {
+  ScopedPhase ph(timers_, "contact");
+  contact_->observe(t_, solids_, solid_diagnostics());
 }
 
 Field Simulation::named_field(const std::string& name) const {
@@ -494,61 +500,6 @@ double Simulation::max_face_divergence() const {
   return max_abs_face_divergence(uf_.view(), vf_.view(), g.nx, g.ny, g.dx);
 }
 
-std::string Simulation::check_health(double dt) const {
-  const Grid& g = cfg_.grid;
-  for (int j = 0; j < g.ny; ++j)
-    for (int i = 0; i < g.nx; ++i)
-      if (!std::isfinite(u_(i, j)) || !std::isfinite(v_(i, j)) || !std::isfinite(p_(i, j))) {
-        char buf[256];
-        std::snprintf(buf, sizeof buf,
-                      "non-finite %s at cell (%d, %d), x = %.6g, y = %.6g, step %ld, t = %.6g",
-                      !std::isfinite(u_(i, j)) ? "u" : !std::isfinite(v_(i, j)) ? "v" : "p", i, j,
-                      g.xc(i), g.yc(j), nstep_, t_);
-        return buf;
-      }
-  if (!(dt > 1e-9 * (cfg_.t_end - cfg_.t_start))) {
-    char buf[256];
-    std::snprintf(buf, sizeof buf,
-                  "time step collapsed to %.3g at step %ld, t = %.6g: the solution is blowing up "
-                  "(kinetic energy %.3g)", dt, nstep_, t_, kinetic_energy());
-    return buf;
-  }
-  // the face velocities are exactly divergence-free up to the Poisson tolerance; a
-  // relative volume change of 1% per step means the projection failed
-  double worst = 0.0;
-  int wi = 0, wj = 0;
-  for (int j = 0; j < g.ny; ++j)
-    for (int i = 0; i < g.nx; ++i) {
-      const double d =
-          std::abs(uf_(i + 1, j) - uf_(i, j) + vf_(i, j + 1) - vf_(i, j)) / g.dx;
-      if (!(d <= worst)) { worst = d; wi = i; wj = j; }
-    }
-  if (!(worst * dt <= 1e-2)) {
-    char buf[256];
-    std::snprintf(buf, sizeof buf,
-                  "face divergence exploded: |div u_f| dt = %.3g at cell (%d, %d), x = %.6g, "
-                  "y = %.6g, step %ld, t = %.6g (Poisson: %d iterations, residual %.3g)",
-                  worst * dt, wi, wj, g.xc(wi), g.yc(wj), nstep_, t_, last_stats_.iterations,
-                  last_stats_.rel_residual);
-    return buf;
-  }
-  return {};
-}
-
-std::vector<std::string> Simulation::diagnostic_columns() const {
-  std::vector<std::string> c{"step", "time", "dt", "kinetic_energy", "max_div_face",
-                             "poisson_iterations", "poisson_residual", "wall_time"};
-  if (!solids_.empty()) {
-    c.push_back("elastic_energy");
-    c.push_back("total_energy");
-    c.push_back("contact_energy");
-  }
-  for (size_t k = 0; k < solids_.size(); ++k)
-    for (const char* q : {"area", "cx", "cy", "u", "v", "sigma_max", "gap_solid", "gap_wall"})
-      c.push_back("solid" + std::to_string(k) + "_" + q);
-  return c;
-}
-
 const std::vector<SolidDiagnostics>& Simulation::solid_diagnostics() const {
   // keyed by the step count: the state changes only in step() (and through u_mut()/v_mut()
   // before the first step, which the -1 of the constructor's evaluation below covers)
@@ -558,190 +509,6 @@ const std::vector<SolidDiagnostics>& Simulation::solid_diagnostics() const {
     solid_diag_step_ = nstep_;
   }
   return solid_diag_;
-}
-
-std::vector<double> Simulation::diagnostic_values(double last_dt, double wall) const {
-  const double ke = kinetic_energy();
-  std::vector<double> r{double(nstep_), t_, last_dt, ke, max_face_divergence(),
-                        double(last_stats_.iterations), last_stats_.rel_residual, wall};
-  if (!solids_.empty()) {
-    r.push_back(elastic_energy_);
-    r.push_back(ke + elastic_energy_);
-    r.push_back(contact_->energy());
-  }
-  const std::vector<SolidDiagnostics>& diag = solid_diagnostics();
-  for (size_t k = 0; k < solids_.size(); ++k) {
-    const SolidDiagnostics& d = diag[k];
-    for (double q : {d.area, d.cx, d.cy, d.u, d.v, d.sigma_max, contact_->gap_solid(int(k)),
-                     contact_->gap_wall(int(k))})
-      r.push_back(q);
-  }
-  return r;
-}
-
-void Simulation::solid_output_fields(Field& phi, Field& xix, Field& xiy, Field& normal) const {
-  // the solid nearest each cell (smallest phi) gives phi and xi; 0 outside every band
-  const Grid& g = cfg_.grid;
-  phi.resize(g.nx, g.ny, Grid::ng, 1e30);
-  xix.resize(g.nx, g.ny, Grid::ng, 0.0);
-  xiy.resize(g.nx, g.ny, Grid::ng, 0.0);
-  normal.resize(g.nx, g.ny, Grid::ng, 0.0);
-  for (const auto& s : solids_) {
-    for (int j = 0; j < s->nj(); ++j)
-      for (int i = 0; i < s->ni(); ++i) {
-        const int gi = s->i0() + i, gj = s->j0() + j;
-        const double ph = s->phi()(i, j);
-        if (ph < phi(gi, gj)) {
-          phi(gi, gj) = ph;
-          if (ph < s->band()) {
-            xix(gi, gj) = s->xi_x()(i, j);
-            xiy(gi, gj) = s->xi_y()(i, j);
-          }
-        }
-      }
-  }
-  double cap = 0.0;
-  for (const auto& s : solids_) cap = std::max(cap, s->band());
-  for (int j = 0; j < g.ny; ++j)
-    for (int i = 0; i < g.nx; ++i) {
-      phi(i, j) = std::min(phi(i, j), cap);
-      if (sxx_.nx() > 0) normal(i, j) = 0.5 * (sxx_(i, j) + syy_(i, j));
-    }
-}
-
-RunSummary Simulation::run(const RunOptions& opt) {
-  namespace fs = std::filesystem;
-  const auto wall0 = std::chrono::steady_clock::now();
-  const Grid& g = cfg_.grid;
-  RunSummary sum;
-  const bool output = !opt.out_dir.empty();
-
-  std::unique_ptr<CsvWriter> csv;
-  std::unique_ptr<PvdSeries> pvd;
-  int frame = 0;
-  auto write_frame = [&]() {
-    if (!output || !cfg_.write_vtk) return;
-    ScopedPhase ph(timers_, "output");
-    Field vort = named_field("vorticity");
-    char name[64];
-    std::snprintf(name, sizeof name, "frame_%05d.vti", frame++);
-    std::vector<VtkScalar> scalars{{"p", &p_}, {"vorticity", &vort}, {"density", &rho_}};
-    std::vector<VtkVector> vectors{{"velocity", &u_, &v_}};
-    Field phi, xix, xiy, normal;
-    if (!solids_.empty()) {
-      solid_output_fields(phi, xix, xiy, normal);
-      scalars.push_back({"phi", &phi});
-      scalars.push_back({"normal_stress", &normal});
-      vectors.push_back({"xi", &xix, &xiy});
-      if (sxx_.nx() > 0) {
-        scalars.push_back({"stress_xx", &sxx_});
-        scalars.push_back({"stress_xy", &sxy_});
-        scalars.push_back({"stress_yy", &syy_});
-      }
-    }
-    write_vti((fs::path(opt.out_dir) / name).string(), g, scalars, vectors, t_);
-    pvd->add(t_, name);
-  };
-  double last_dt = 0.0;
-  auto write_row = [&]() {
-    if (!csv) return;
-    ScopedPhase ph(timers_, "diagnostics");
-    csv->row(diagnostic_values(last_dt, wall_seconds_since(wall0)));
-  };
-
-  if (output) {
-    fs::create_directories(opt.out_dir);
-    std::ostringstream head;
-    head << "refmap diagnostics, scene " << cfg_.name << ", grid " << g.nx << " x " << g.ny
-         << ", dx " << g.dx;
-    csv = std::make_unique<CsvWriter>(
-        (fs::path(opt.out_dir) / "diagnostics.csv").string(),
-        diagnostic_columns(), head.str());
-    pvd = std::make_unique<PvdSeries>((fs::path(opt.out_dir) / (cfg_.name + ".pvd")).string());
-  }
-  Progress progress(cfg_.t_start, cfg_.t_end, cfg_.log_interval_s, opt.progress && !opt.quiet);
-  write_frame();
-  write_row();
-
-  const double eps_t = 1e-12 * std::max(1.0, std::abs(cfg_.t_end));
-  double next_frame = cfg_.output_interval > 0.0 ? cfg_.t_start + cfg_.output_interval : cfg_.t_end;
-  Field u_old, v_old;
-  // phase timers cover the steps after the warm-up (and the final output)
-  auto timed0 = wall0;
-  long timed_step0 = nstep_;
-  while (t_ < cfg_.t_end - eps_t) {
-    if (opt.timing_warmup_steps > 0 && nstep_ == opt.timing_warmup_steps) {
-      timers_.reset();
-      timed0 = std::chrono::steady_clock::now();
-      timed_step0 = nstep_;
-    }
-    if (cfg_.max_steps > 0 && nstep_ >= cfg_.max_steps) break;
-    double dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
-    // land exactly on frame times and the end time
-    dt = std::min(dt, cfg_.t_end - t_);
-    if (output && cfg_.write_vtk && next_frame < cfg_.t_end && next_frame - t_ < dt)
-      dt = std::max(next_frame - t_, 1e-300);
-    if (cfg_.steady_tol > 0.0) { u_old = u_; v_old = v_; }
-    step(dt);
-    last_dt = dt;
-
-    std::string bad = check_health(dt);
-    if (!bad.empty()) {
-      write_row();
-      sum.failed = true;
-      sum.failure = bad;
-      break;
-    }
-    if (nstep_ % std::max(1, cfg_.diagnostics_every) == 0) write_row();
-    if (output && cfg_.write_vtk && t_ >= next_frame - eps_t && t_ < cfg_.t_end - eps_t) {
-      write_frame();
-      next_frame += cfg_.output_interval > 0.0 ? cfg_.output_interval : cfg_.t_end;
-    }
-    progress.update(t_, nstep_, dt, last_stats_.iterations, last_stats_.rel_residual);
-    if (cfg_.steady_tol > 0.0) {
-      double change = 0.0;
-      for (int j = 0; j < g.ny; ++j)
-        for (int i = 0; i < g.nx; ++i)
-          change = std::max({change, std::abs(u_(i, j) - u_old(i, j)),
-                             std::abs(v_(i, j) - v_old(i, j))});
-      if (change / dt < cfg_.steady_tol) {
-        sum.steady = true;
-        progress.message("steady state reached at t = " + std::to_string(t_) +
-                         " (max |du/dt| = " + std::to_string(change / dt) + ")");
-        break;
-      }
-    }
-  }
-  progress.finish();
-  if (!sum.failed) {
-    if (nstep_ % std::max(1, cfg_.diagnostics_every) != 0) write_row();
-    write_frame();
-    if (output) {
-      ScopedPhase ph(timers_, "output");
-      for (const ProbeSpec& pr : cfg_.probes) {
-        Field f = named_field(pr.field);
-        write_probe_csv((fs::path(opt.out_dir) / ("probe_" + pr.name + ".csv")).string(), pr, g, f);
-      }
-    }
-  }
-  if (csv) csv->flush();
-  if (contact_) {
-    finish_events();
-    if (output) {
-      std::FILE* f = std::fopen((fs::path(opt.out_dir) / "events.csv").string().c_str(), "w");
-      if (!f) throw std::runtime_error("cannot write " + (fs::path(opt.out_dir) / "events.csv").string());
-      std::fprintf(f, "time,solid,event,value,with\n");
-      for (const ContactEvent& e : contact_->events())
-        std::fprintf(f, "%.10g,%d,%s,%.10g,%s\n", e.time, e.solid, e.event.c_str(), e.value, e.with.c_str());
-      std::fclose(f);
-    }
-  }
-  sum.steps = nstep_;
-  sum.t_end = t_;
-  sum.wall_s = wall_seconds_since(wall0);
-  sum.timed_steps = nstep_ - timed_step0;
-  sum.timed_wall_s = wall_seconds_since(timed0);
-  return sum;
 }
 
 }  // namespace refmap

@@ -1,5 +1,6 @@
 #pragma once
-// The time loop: Algorithm 1 of Jain & Mani (fluid steps 4-9 here; solids add steps 1-3).
+// One time step over the state: Algorithm 1 of Jain & Mani (fluid steps 4-9 here; solids
+// add steps 1-3). The run loop, output and diagnostics are in solver/run.hpp.
 #include <memory>
 #include <utility>
 #include <string>
@@ -15,31 +16,10 @@
 
 namespace refmap {
 
-struct RunOptions {
-  std::string out_dir;          ///< where VTK, pvd, diagnostics.csv and probes go ("" = no output)
-  bool progress = true;         ///< print progress (live line on a terminal, log lines otherwise)
-  bool quiet = false;           ///< no progress, no summary (tests)
-  long timing_warmup_steps = 0; ///< reset the phase timers after this many steps (0: time all)
-};
-
-struct RunSummary {
-  long steps = 0;
-  double t_end = 0.0;
-  double wall_s = 0.0;
-  long timed_steps = 0;         ///< steps covered by the phase timers (after the warm-up)
-  double timed_wall_s = 0.0;    ///< wall seconds covered by the phase timers
-  bool steady = false;          ///< stopped by steady_tol
-  bool failed = false;          ///< stopped because fields went non-finite / divergence exploded
-  std::string failure;          ///< the message in that case
-};
-
 class Simulation {
  public:
   explicit Simulation(const Config& cfg);
   ~Simulation();
-
-  /// Runs from t_start to t_end (or steady state), writing output to opt.out_dir.
-  RunSummary run(const RunOptions& opt);
 
   /// One time step of size dt (dt <= 0: choose it from the stability limits).
   /// Returns the dt taken.
@@ -73,7 +53,7 @@ class Simulation {
   const Field& solid_stress_xy() const { return sxy_; }
   const Field& solid_stress_yy() const { return syy_; }
   /// Closes the contact event log at the current time (restitution of a rebound still
-  /// being tracked); run() calls it at the end.
+  /// being tracked); run() (solver/run.hpp) calls it at the end.
   void finish_events() { if (contact_) contact_->finish(t_); }
   /// Contact model and gap/event tracker (null without solids).
   const Contact* contact() const { return contact_.get(); }
@@ -89,6 +69,11 @@ class Simulation {
   int last_poisson_iterations() const { return last_stats_.iterations; }
   double last_poisson_residual() const { return last_stats_.rel_residual; }
   const PhaseTimers& timers() const { return timers_; }
+  /// The run loop books its output phases here and resets it after the warm-up.
+  PhaseTimers& timers() { return timers_; }
+  /// Solid::diagnostics of every solid for the current state, computed once per step and
+  /// shared by the contact log and the diagnostics.csv row.
+  const std::vector<SolidDiagnostics>& solid_diagnostics() const;
 
   /// Fill ghost cells of the cell velocity from the boundary conditions at time t.
   void apply_velocity_bc(Field& u, Field& v, double t) const;
@@ -96,23 +81,39 @@ class Simulation {
  private:
   void initialise();
   void build_poisson_coefficients();
-  /// Algorithm 1 steps 1-2 for every solid, then density and viscosity of the mixture.
+  // The phases of step(), in order; each books its time under the phase of the same name
+  // in the timing table.
+  /// flow = "prescribed": only the solids move, in the imposed velocity field.
+  double step_prescribed(double dt);
+  /// Algorithm 1 steps 1-3: "xi advection", "extrapolation", "level set" of every solid,
+  /// then density and viscosity of the mixture.
+  void move_solids(double dt);
+  /// Step 4, eq. (5.1), "advection": RK-4 advection of the momentum rho u.
+  void advect_momentum(double dt);
+  /// Eq. (5.2), "viscous" and "solid stress": split forward-Euler step of the stresses.
+  void apply_viscous_and_solid_stress(double dt);
+  /// "poisson setup": the face coefficients 1/rho of the new density.
+  void setup_poisson();
+  /// "contact": contact force on the faces of the new configuration.
+  void compute_contact_force();
+  /// Step 5, eq. (5.3), "face velocities": predicted face velocities and their divergence.
+  void predict_face_velocities(double dt);
+  /// Step 6, eq. (5.4), "poisson": the pressure correction.
+  void solve_pressure();
+  /// Steps 7-9, eqs. (5.5)-(5.7), "projection": new pressure, face and cell velocities.
+  void project(double dt);
+  /// "contact": the gap and event tracker after the step.
+  void observe_contact();
+
+  /// Algorithm 1 steps 1-2 for every solid (timed as "xi advection", "extrapolation",
+  /// "level set").
   void update_solids(double dt);
   void blend_material_fields();
   /// Force of the solid stresses (conservative or not) into fx_, fy_ (which it overwrites).
   void solid_force();
   void impose_prescribed_velocity(double t);
-  /// Solid::diagnostics of every solid for the current state, computed once per step and
-  /// shared by the contact log and the diagnostics.csv row.
-  const std::vector<SolidDiagnostics>& solid_diagnostics() const;
-  std::vector<std::string> diagnostic_columns() const;
-  std::vector<double> diagnostic_values(double last_dt, double wall) const;
-  void solid_output_fields(Field& phi, Field& xix, Field& xiy, Field& normal) const;
-  void project(double dt);
   /// Subtracts beta_f times the contact face force from the face accelerations gxf_, gyf_.
   void add_contact_face_accel();
-  /// "" if the state is healthy, else a message naming the step, time and cell.
-  std::string check_health(double dt) const;
 
   Config cfg_;
   double t_ = 0.0;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "solver/probes.hpp"
+#include "solver/run.hpp"
 #include "solver/scene.hpp"
 #include "solver/simulation.hpp"
 #include "tests/test_helpers.hpp"
@@ -27,7 +28,7 @@ CavityErrors run_cavity(const std::string& scene, const std::string& column,
                         const std::vector<std::string>& sets = {}) {
   Config cfg = load_scene(scene_path(scene), sets);
   Simulation sim(cfg);
-  RunSummary s = sim.run(RunOptions{"", false, true});
+  RunSummary s = run(sim, RunOptions{"", false, true});
   EXPECT_FALSE(s.failed) << s.failure;
   Field u = sim.named_field("u"), v = sim.named_field("v");
   Csv gu = read_csv(data_path("ghia1982_u_vertical.csv"));

@@ -1,0 +1,81 @@
+#include "solver/diagnostics.hpp"
+
+#include "solver/simulation.hpp"
+
+namespace refmap {
+
+namespace {
+
+/// What the columns of one row are computed from.
+struct RowState {
+  const Simulation& sim;
+  double last_dt;
+  double wall_s;
+  double kinetic_energy;  ///< computed once: two columns use it
+  const std::vector<SolidDiagnostics>& solid;  ///< Simulation's per-step cache
+};
+
+struct Column {
+  const char* name;
+  bool needs_solids;  ///< only written when the scene has solids
+  double (*value)(const RowState&);
+};
+
+// clang-format off
+const Column kColumns[] = {
+    {"step",               false, [](const RowState& r) { return double(r.sim.steps()); }},
+    {"time",               false, [](const RowState& r) { return r.sim.time(); }},
+    {"dt",                 false, [](const RowState& r) { return r.last_dt; }},
+    {"kinetic_energy",     false, [](const RowState& r) { return r.kinetic_energy; }},
+    {"max_div_face",       false, [](const RowState& r) { return r.sim.max_face_divergence(); }},
+    {"poisson_iterations", false, [](const RowState& r) { return double(r.sim.last_poisson_iterations()); }},
+    {"poisson_residual",   false, [](const RowState& r) { return r.sim.last_poisson_residual(); }},
+    {"wall_time",          false, [](const RowState& r) { return r.wall_s; }},
+    {"elastic_energy",     true,  [](const RowState& r) { return r.sim.elastic_energy(); }},
+    {"total_energy",       true,  [](const RowState& r) { return r.kinetic_energy + r.sim.elastic_energy(); }},
+    {"contact_energy",     true,  [](const RowState& r) { return r.sim.contact()->energy(); }},
+};
+
+/// Written for every solid k as solidK_NAME, after the columns above.
+struct SolidColumn {
+  const char* name;
+  double (*value)(const RowState&, int k);
+};
+
+const SolidColumn kSolidColumns[] = {
+    {"area",      [](const RowState& r, int k) { return r.solid[k].area; }},
+    {"cx",        [](const RowState& r, int k) { return r.solid[k].cx; }},
+    {"cy",        [](const RowState& r, int k) { return r.solid[k].cy; }},
+    {"u",         [](const RowState& r, int k) { return r.solid[k].u; }},
+    {"v",         [](const RowState& r, int k) { return r.solid[k].v; }},
+    {"sigma_max", [](const RowState& r, int k) { return r.solid[k].sigma_max; }},
+    {"gap_solid", [](const RowState& r, int k) { return r.sim.contact()->gap_solid(k); }},
+    {"gap_wall",  [](const RowState& r, int k) { return r.sim.contact()->gap_wall(k); }},
+};
+// clang-format on
+
+}  // namespace
+
+std::vector<std::string> diagnostic_columns(const Simulation& sim) {
+  const int nsolids = int(sim.solids().size());
+  std::vector<std::string> c;
+  for (const Column& col : kColumns)
+    if (!col.needs_solids || nsolids > 0) c.push_back(col.name);
+  for (int k = 0; k < nsolids; ++k)
+    for (const SolidColumn& col : kSolidColumns)
+      c.push_back("solid" + std::to_string(k) + "_" + col.name);
+  return c;
+}
+
+std::vector<double> diagnostic_values(const Simulation& sim, double last_dt, double wall_s) {
+  const int nsolids = int(sim.solids().size());
+  const RowState r{sim, last_dt, wall_s, sim.kinetic_energy(), sim.solid_diagnostics()};
+  std::vector<double> v;
+  for (const Column& col : kColumns)
+    if (!col.needs_solids || nsolids > 0) v.push_back(col.value(r));
+  for (int k = 0; k < nsolids; ++k)
+    for (const SolidColumn& col : kSolidColumns) v.push_back(col.value(r, k));
+  return v;
+}
+
+}  // namespace refmap

@@ -1,0 +1,55 @@
+#include "solver/health.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "solver/simulation.hpp"
+
+namespace refmap {
+
+std::string check_health(const Simulation& sim, double dt) {
+  const Config& cfg = sim.config();
+  const Grid& g = sim.grid();
+  const Field &u = sim.u(), &v = sim.v(), &p = sim.p(), &uf = sim.uf(), &vf = sim.vf();
+  const long nstep = sim.steps();
+  const double t = sim.time();
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i)
+      if (!std::isfinite(u(i, j)) || !std::isfinite(v(i, j)) || !std::isfinite(p(i, j))) {
+        char buf[256];
+        std::snprintf(buf, sizeof buf,
+                      "non-finite %s at cell (%d, %d), x = %.6g, y = %.6g, step %ld, t = %.6g",
+                      !std::isfinite(u(i, j)) ? "u" : !std::isfinite(v(i, j)) ? "v" : "p", i, j,
+                      g.xc(i), g.yc(j), nstep, t);
+        return buf;
+      }
+  if (!(dt > 1e-9 * (cfg.t_end - cfg.t_start))) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "time step collapsed to %.3g at step %ld, t = %.6g: the solution is blowing up "
+                  "(kinetic energy %.3g)", dt, nstep, t, sim.kinetic_energy());
+    return buf;
+  }
+  // the face velocities are exactly divergence-free up to the Poisson tolerance; a
+  // relative volume change of 1% per step means the projection failed
+  double worst = 0.0;
+  int wi = 0, wj = 0;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const double d =
+          std::abs(uf(i + 1, j) - uf(i, j) + vf(i, j + 1) - vf(i, j)) / g.dx;
+      if (!(d <= worst)) { worst = d; wi = i; wj = j; }
+    }
+  if (!(worst * dt <= 1e-2)) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "face divergence exploded: |div u_f| dt = %.3g at cell (%d, %d), x = %.6g, "
+                  "y = %.6g, step %ld, t = %.6g (Poisson: %d iterations, residual %.3g)",
+                  worst * dt, wi, wj, g.xc(wi), g.yc(wj), nstep, t, sim.last_poisson_iterations(),
+                  sim.last_poisson_residual());
+    return buf;
+  }
+  return {};
+}
+
+}  // namespace refmap
