@@ -25,7 +25,7 @@ namespace refmap {
 
 namespace {
 
-FaceBoundary face_boundary(const Config& c) { return {periodic_x(c.bc), periodic_y(c.bc)}; }
+Sides face_boundary(const Config& c) { return face_sides(c.bc); }
 
 double wall_seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -43,8 +43,7 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
   for (Field* f : {&k2x_, &k2y_, &k3x_, &k3y_, &k4x_, &k4y_}) f->resize(nx, ny, ng);
   bool elastic = false;
   for (const SolidSpec& sp : cfg_.solids) {
-    solids_.push_back(std::make_unique<Solid>(sp, cfg_.solid_opt, cfg_.grid, periodic_x(cfg_.bc),
-                                              periodic_y(cfg_.bc)));
+    solids_.push_back(std::make_unique<Solid>(sp, cfg_.solid_opt, cfg_.grid, face_boundary(cfg_)));
     elastic = elastic || sp.mu_s > 0.0;
   }
   if (elastic)
@@ -209,7 +208,7 @@ void Simulation::initialise() {
   // Initial projection: make the face velocities exactly divergence-free (and remove the
   // discrete divergence of the initial cell field) without touching the pressure.
   apply_velocity_bc(u_, v_, t_);
-  const FaceBoundary fb = face_boundary(cfg_);
+  const Sides fb = face_boundary(cfg_);
   gxf_.fill(0.0);
   gyf_.fill(0.0);
   predict_face_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), uf_.view(), vf_.view(),
@@ -236,8 +235,7 @@ void Simulation::build_poisson_coefficients() {
   face_beta(rho_.view(), beta_x_.view(), beta_y_.view(), g.nx, g.ny, face_boundary(cfg_));
   PoissonOperator op;
   op.grid = g;
-  op.periodic_x = periodic_x(cfg_.bc);
-  op.periodic_y = periodic_y(cfg_.bc);
+  op.sides = face_boundary(cfg_);
   op.beta_x = &beta_x_;
   op.beta_y = &beta_y_;
   poisson_->setup(op);
@@ -299,7 +297,7 @@ void Simulation::add_contact_face_accel() {
 
 void Simulation::project(double dt) {
   const Grid& g = cfg_.grid;
-  const FaceBoundary fb = face_boundary(cfg_);
+  const Sides fb = face_boundary(cfg_);
   {
     ScopedPhase ph(timers_, "face velocities");
     apply_velocity_bc(u_, v_, t_ + dt);
