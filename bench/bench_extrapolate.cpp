@@ -37,10 +37,10 @@
 #include <cmath>
 #include <vector>
 
-#include "bench/zalesak_geometry.hpp"
 #include "kernels/extrapolate_lsq.hpp"
 #include "kernels/extrapolate_pde.hpp"
 #include "solver/field.hpp"
+#include "tests/fixtures/zalesak_geometry.hpp"
 
 namespace {
 

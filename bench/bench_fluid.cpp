@@ -154,13 +154,13 @@ void BM_ProjectionFaces(benchmark::State& state) {
   fill_all(rho, [n](int i, int j) { return 1.0 + 0.5 * (1.0 + wave(i, j, n, 1, 1, 0.0)); });
   fill_all(u, [n](int i, int j) { return wave(i, j, n, 1, 1, 0.0); });
   fill_all(v, [n](int i, int j) { return -wave(i, j, n, 1, 1, 1.5); });
-  const FaceBoundary fb{};  // walls on all four sides, as in the cavity
-  face_beta(rho.cview(), bx.view(), by.view(), n, n, fb);
+  const Sides walls{};  // all four sides walls, as in the cavity
+  face_beta(rho.cview(), bx.view(), by.view(), n, n, walls);
   for (auto _ : state) {
     face_accel(p.cview(), bx.cview(), by.cview(), gx.view(), gy.view(), n, n, dx, 0.0, 0.0, 1.0,
-               fb);
+               walls);
     predict_face_velocity(u.cview(), v.cview(), gx.cview(), gy.cview(), uf.view(), vf.view(), n,
-                          n, dt, fb);
+                          n, dt, walls);
     face_divergence(uf.cview(), vf.cview(), rhs.view(), n, n, dx, 1.0 / dt);
     benchmark::ClobberMemory();
   }

@@ -1,5 +1,5 @@
 // Poisson solver benchmarks (Google Benchmark). Thread count: OMP_NUM_THREADS.
-// Grids N x N, N = 128, 256, 512, 1024, 2048 (the problem of bench/poisson_problem.hpp).
+// Grids N x N, N = 128, 256, 512, 1024, 2048 (the problem of tests/fixtures/poisson_problem.hpp).
 //
 //   PoissonSmoother/N         one red-black Gauss-Seidel sweep on the finest level (one pass)
 //   PoissonSmootherTwoSweeps/N  two RB-GS sweeps pipelined into one pass (walls in y);
@@ -10,7 +10,7 @@
 //   PoissonProlong/N          x_f += P x_c
 //   PoissonVCycle/N/R         one V(2,2) cycle (all levels), density ratio R
 //   PoissonSolve/<m>/N/R      the pressure solver study: the standard problem
-//                             standard_problem(N, R) (bench/poisson_problem.hpp) solved from
+//                             standard_problem(N, R) (tests/fixtures/poisson_problem.hpp) solved from
 //                             x = 0 to a relative residual ||r||_2 / ||rhs||_2 <= 1e-8 (rhs
 //                             projected to zero mean), m in {V, F, cg, mgpcg}: multigrid
 //                             V(2,2) / F(2,2) cycles, Jacobi-preconditioned CG, CG
@@ -62,10 +62,10 @@
 #include <string>
 
 #include "bench/bench_counters.hpp"
-#include "bench/poisson_problem.hpp"
 #include "kernels/multigrid.hpp"
 #include "solver/poisson.hpp"
 #include "solver/poisson_multigrid.hpp"
+#include "tests/fixtures/poisson_problem.hpp"
 
 namespace {
 

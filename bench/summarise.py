@@ -406,7 +406,7 @@ def extra_md(rows, threads):
         for r in sr:
             g.setdefault((int(r["grid"]), int(r["param"]), r["benchmark"].split("/", 1)[1]), {})[r["threads"]] = r
         out += ["", "## Pressure solver study (PoissonSolve, poisson_time_per_unknown.png)", "",
-                "Standard problem `standard_problem(N, R)` (bench/poisson_problem.hpp) from "
+                "Standard problem `standard_problem(N, R)` (tests/fixtures/poisson_problem.hpp) from "
                 "x = 0 to ||r||_2/||rhs||_2 <= 1e-8. Iterations = cycles (multigrid) or CG "
                 "steps; conv. factor = final residual^(1/iterations); ref. residual = the "
                 "final residual recomputed independently of the solver. Time = median wall "

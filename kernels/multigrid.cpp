@@ -28,7 +28,7 @@ inline void copy_ghost_rows(const Stencil& s, View x) {
 }
 
 inline void ghost_cols(const Stencil& s, double* xr) {
-  if (s.px) {
+  if (s.sides.periodic_x()) {
     xr[-1] = xr[s.nx - 1];
     xr[s.nx] = xr[0];
   }
@@ -123,7 +123,7 @@ inline void prolong_row(const Transfer1D& T, const double* __restrict t, double*
 
 // ------------------------------------------------------------------------------------------
 Transfer1D build_transfer(const std::vector<double>& cf, const std::vector<double>& wf,
-                          double length, bool periodic, std::vector<double>& cc,
+                          double length, FaceKind lo, FaceKind hi, std::vector<double>& cc,
                           std::vector<double>& cw) {
   const int nf = int(cf.size());
   if (nf < 2 || int(wf.size()) != nf) throw std::invalid_argument("build_transfer: need >= 2 cells");
@@ -150,16 +150,20 @@ Transfer1D build_transfer(const std::vector<double>& cf, const std::vector<doubl
     T.p0[i] = T.p1[i] = I;
     const double d = cf[i] - cc[I];
     if (std::abs(d) <= 1e-9 * wf[i]) continue;  // middle child of a 3-cell coarse cell
-    int nb;
-    double cn;
+    int nb = I;
+    double cn = cc[I];
     if (d < 0) {
       if (I > 0) { nb = I - 1; cn = cc[I - 1]; }
-      else if (periodic) { nb = nc - 1; cn = cc[nc - 1] - length; }
-      else continue;  // wall: Neumann reflection -> constant extrapolation
+      else switch (lo) {
+        case FaceKind::Wall: continue;  // Neumann reflection -> constant extrapolation
+        case FaceKind::Periodic: nb = nc - 1; cn = cc[nc - 1] - length; break;
+      }
     } else {
       if (I < nc - 1) { nb = I + 1; cn = cc[I + 1]; }
-      else if (periodic) { nb = 0; cn = cc[0] + length; }
-      else continue;
+      else switch (hi) {
+        case FaceKind::Wall: continue;
+        case FaceKind::Periodic: nb = 0; cn = cc[0] + length; break;
+      }
     }
     const double wn = (cf[i] - cc[I]) / (cn - cc[I]);
     T.p1[i] = nb;
@@ -244,15 +248,30 @@ std::size_t scratch_per_thread(int nxf, int nxc) {
 }
 
 // ------------------------------------------------------------------------------------------
+namespace {
+/// The column (row) whose value the first ghost column (row) beyond a side copies.
+inline int ghost_source(FaceKind k, int adjacent, int wrapped) {
+  switch (k) {
+    case FaceKind::Wall: return adjacent;  // any finite value: it meets T = 0
+    case FaceKind::Periodic: return wrapped;
+  }
+  return adjacent;
+}
+}  // namespace
+
 void fill_ghosts(const Stencil& s, View x) {
   const int nx = s.nx, ny = s.ny;
+  const int left = ghost_source(s.sides[Left], 0, nx - 1);
+  const int right = ghost_source(s.sides[Right], nx - 1, 0);
+  const int bottom = ghost_source(s.sides[Bottom], 0, ny - 1);
+  const int top = ghost_source(s.sides[Top], ny - 1, 0);
   for (int j = 0; j < ny; ++j) {
-    x(-1, j) = s.px ? x(nx - 1, j) : x(0, j);
-    x(nx, j) = s.px ? x(0, j) : x(nx - 1, j);
+    x(-1, j) = x(left, j);
+    x(nx, j) = x(right, j);
   }
   const std::size_t bytes = sizeof(double) * std::size_t(nx + 2);
-  std::memcpy(&x(-1, -1), &x(-1, s.py ? ny - 1 : 0), bytes);
-  std::memcpy(&x(-1, ny), &x(-1, s.py ? 0 : ny - 1), bytes);
+  std::memcpy(&x(-1, -1), &x(-1, bottom), bytes);
+  std::memcpy(&x(-1, ny), &x(-1, top), bytes);
 }
 
 namespace {
@@ -480,7 +499,7 @@ void smooth_rbgs(const Stencil& s, View x, CView f, int sweeps, bool black_first
     return;
   }
   const int c1 = black_first ? 1 : 0, c2 = 1 - c1;
-  if (!s.py) {
+  if (!s.sides.periodic_y()) {
     rbgs_pipeline_walls(s, x, f, sweeps, c1, omega, res2);
     return;
   }
@@ -517,7 +536,7 @@ void smooth_rbgs(const Stencil& s, View x, CView f, int sweeps, bool black_first
 void smooth_rbgs_restrict(const Stencil& s, View x, CView f, int sweeps, bool black_first,
                           double omega, const Transfer1D& trx, const Transfer1D& try_, View fc,
                           const Scratch& sc) {
-  if (sweeps > 0 && !s.py) {
+  if (sweeps > 0 && !s.sides.periodic_y()) {
     const PipeOut po{&trx, &try_, fc};
     rbgs_pipeline_walls(s, x, f, sweeps, black_first ? 1 : 0, omega, nullptr, nullptr, &po, &sc);
     return;
@@ -529,7 +548,7 @@ void smooth_rbgs_restrict(const Stencil& s, View x, CView f, int sweeps, bool bl
 void prolong_smooth_rbgs(const Stencil& s, const Transfer1D& trx, const Transfer1D& try_,
                          CView xc, View x, CView f, int sweeps, bool black_first, double omega,
                          const Scratch& sc, double* res2) {
-  if (sweeps > 0 && !s.py) {
+  if (sweeps > 0 && !s.sides.periodic_y()) {
     const PipeIn pi{&trx, &try_, xc};
     rbgs_pipeline_walls(s, x, f, sweeps, black_first ? 1 : 0, omega, res2, &pi, nullptr, &sc);
     return;
@@ -584,7 +603,7 @@ void smooth_jacobi(const Stencil& s, View x, CView f, int sweeps, double omega,
         std::swap(keep, spare);
       }
 #pragma omp barrier
-      if (s.py) {
+      if (s.sides.periodic_y()) {
 #pragma omp single
         copy_ghost_rows(s, x);
       }
@@ -663,7 +682,7 @@ void prolong_add(const Stencil& fs, const Transfer1D& trx, const Transfer1D& try
     const int j0 = chunk_lo(fs.ny, nt, t), j1 = chunk_lo(fs.ny, nt, t + 1);
     double* __restrict tmp = sc.thread(t);
     for (int j = j0; j < j1; ++j) prolong_fine_row(fs, trx, try_, xc, xf, j, tmp);
-    if (fs.py) {
+    if (fs.sides.periodic_y()) {
 #pragma omp barrier
 #pragma omp single
       copy_ghost_rows(fs, xf);
@@ -833,7 +852,7 @@ void cg_direction(const Stencil& s, CView z, double beta, View p) {
     }
     ghost_cols(s, pr);
   }
-  if (s.py) copy_ghost_rows(s, p);
+  if (s.sides.periodic_y()) copy_ghost_rows(s, p);
 }
 
 void cg_direction_jacobi(const Stencil& s, CView r, double beta, View p) {
@@ -847,7 +866,7 @@ void cg_direction_jacobi(const Stencil& s, CView r, double beta, View p) {
     for (int i = 0; i < nx; ++i) pr[i] = -id[i] * rr[i] + beta * pr[i];
     ghost_cols(s, pr);
   }
-  if (s.py) copy_ghost_rows(s, p);
+  if (s.sides.periodic_y()) copy_ghost_rows(s, p);
 }
 
 double jacobi_precondition(const Stencil& s, CView r, View z) {

@@ -24,6 +24,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "kernels/boundary_kind.hpp"
 #include "solver/field.hpp"
 
 namespace refmap::mg {
@@ -31,7 +32,7 @@ namespace refmap::mg {
 /// One level's 5-point operator (non-owning).
 struct Stencil {
   int nx = 0, ny = 0;
-  bool px = false, py = false;  ///< periodic in x / y
+  Sides sides;                  ///< the kind of each side (wall or periodic)
   CView tx;                     ///< (nx+1) x ny face coefficients
   CView ty;                     ///< nx x (ny+1) face coefficients
   CView invd;                   ///< nx x ny: 1 / sum_f T_f (0 for a cell with no faces)
@@ -68,9 +69,10 @@ struct Transfer1D {
 /// Build the 1-D transfer from a fine partition (cell centres and widths in finest-cell
 /// units, total length `length`) to the coarse partition obtained by pairing cells
 /// (coarse I covers fine 2I, 2I+1; when nf is odd the last coarse cell covers three).
-/// Returns coarse centres/widths through cc, cw. Requires nf >= 2.
+/// lo, hi: the kinds of the sides at index 0 and nf. Returns coarse centres/widths through
+/// cc, cw. Requires nf >= 2.
 Transfer1D build_transfer(const std::vector<double>& cf, const std::vector<double>& wf,
-                          double length, bool periodic, std::vector<double>& cc,
+                          double length, FaceKind lo, FaceKind hi, std::vector<double>& cc,
                           std::vector<double>& cw);
 
 /// Per-thread scratch (doubles) the kernels below need for a fine row of nxf cells and a

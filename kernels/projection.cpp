@@ -6,33 +6,41 @@
 
 namespace refmap {
 
-void face_beta(CView rho, View bx, View by, int nx, int ny, FaceBoundary fb) {
+void face_beta(CView rho, View bx, View by, int nx, int ny, Sides sides) {
   parallel_rows(0, ny, [&](int j) {
     const double* __restrict r = &rho(0, j);
     double* __restrict b = &bx(0, j);
 #pragma omp simd
     for (int i = 1; i < nx; ++i) b[i] = 2.0 / (r[i - 1] + r[i]);
-    const double edge = fb.periodic_x ? 2.0 / (rho(-1, j) + rho(0, j)) : 0.0;
-    bx(0, j) = edge;
-    bx(nx, j) = edge;
+    switch (sides[Left]) {
+      case FaceKind::Wall: bx(0, j) = 0.0; break;
+      case FaceKind::Periodic: bx(0, j) = 2.0 / (rho(-1, j) + rho(0, j)); break;
+    }
+    switch (sides[Right]) {
+      case FaceKind::Wall: bx(nx, j) = 0.0; break;
+      case FaceKind::Periodic: bx(nx, j) = bx(0, j); break;  // face nx is face 0
+    }
   });
   parallel_rows(0, ny + 1, [&](int j) {
-    const bool boundary = (j == 0 || j == ny);
-    if (boundary && !fb.periodic_y) {
-      for (int i = 0; i < nx; ++i) by(i, j) = 0.0;
-    } else {
-      const int jj = (j == ny) ? 0 : j;  // periodic: face ny repeats face 0
-      const double* __restrict rs = &rho(0, jj - 1);
-      const double* __restrict rn = &rho(0, jj);
-      double* __restrict b = &by(0, j);
-#pragma omp simd
-      for (int i = 0; i < nx; ++i) b[i] = 2.0 / (rs[i] + rn[i]);
+    int jj = j;  // the face row computed
+    if (j == 0 || j == ny) {
+      switch (sides[j == 0 ? Bottom : Top]) {
+        case FaceKind::Wall:
+          for (int i = 0; i < nx; ++i) by(i, j) = 0.0;
+          return;
+        case FaceKind::Periodic: jj = 0; break;  // face ny repeats face 0
+      }
     }
+    const double* __restrict rs = &rho(0, jj - 1);
+    const double* __restrict rn = &rho(0, jj);
+    double* __restrict b = &by(0, j);
+#pragma omp simd
+    for (int i = 0; i < nx; ++i) b[i] = 2.0 / (rs[i] + rn[i]);
   });
 }
 
 void face_accel(CView p, CView bx, CView by, View gx_f, View gy_f, int nx, int ny, double dx,
-                double gx, double gy, double rho_ref, FaceBoundary fb) {
+                double gx, double gy, double rho_ref, Sides sides) {
   const double inv = 1.0 / dx;
   parallel_rows(0, ny, [&](int j) {
     {
@@ -45,35 +53,43 @@ void face_accel(CView p, CView bx, CView by, View gx_f, View gy_f, int nx, int n
         g[i] = b * (pr[i] - pr[i - 1]) * inv - gx * (1.0 - rho_ref * b);
       }
     }
-    double edge = 0.0;
-    if (fb.periodic_x) {
-      const double b = bx(0, j);
-      edge = b * (p(0, j) - p(-1, j)) * inv - gx * (1.0 - rho_ref * b);
+    switch (sides[Left]) {
+      case FaceKind::Wall: gx_f(0, j) = 0.0; break;
+      case FaceKind::Periodic: {
+        const double b = bx(0, j);
+        gx_f(0, j) = b * (p(0, j) - p(-1, j)) * inv - gx * (1.0 - rho_ref * b);
+        break;
+      }
     }
-    gx_f(0, j) = edge;
-    gx_f(nx, j) = edge;
+    switch (sides[Right]) {
+      case FaceKind::Wall: gx_f(nx, j) = 0.0; break;
+      case FaceKind::Periodic: gx_f(nx, j) = gx_f(0, j); break;  // face nx is face 0
+    }
   });
   parallel_rows(0, ny + 1, [&](int j) {
-    const bool boundary = (j == 0 || j == ny);
-    if (boundary && !fb.periodic_y) {
-      for (int i = 0; i < nx; ++i) gy_f(i, j) = 0.0;
-    } else {
-      const int jj = (j == ny) ? 0 : j;
-      const double* __restrict br = &by(0, jj);
-      const double* __restrict pn = &p(0, jj);
-      const double* __restrict ps = &p(0, jj - 1);
-      double* __restrict g = &gy_f(0, j);
-#pragma omp simd
-      for (int i = 0; i < nx; ++i) {
-        const double b = br[i];
-        g[i] = b * (pn[i] - ps[i]) * inv - gy * (1.0 - rho_ref * b);
+    int jj = j;  // the face row computed
+    if (j == 0 || j == ny) {
+      switch (sides[j == 0 ? Bottom : Top]) {
+        case FaceKind::Wall:
+          for (int i = 0; i < nx; ++i) gy_f(i, j) = 0.0;
+          return;
+        case FaceKind::Periodic: jj = 0; break;  // face ny repeats face 0
       }
+    }
+    const double* __restrict br = &by(0, jj);
+    const double* __restrict pn = &p(0, jj);
+    const double* __restrict ps = &p(0, jj - 1);
+    double* __restrict g = &gy_f(0, j);
+#pragma omp simd
+    for (int i = 0; i < nx; ++i) {
+      const double b = br[i];
+      g[i] = b * (pn[i] - ps[i]) * inv - gy * (1.0 - rho_ref * b);
     }
   });
 }
 
 void predict_face_velocity(CView u, CView v, CView gx_f, CView gy_f, View uf, View vf, int nx,
-                           int ny, double dt, FaceBoundary fb) {
+                           int ny, double dt, Sides sides) {
   parallel_rows(0, ny, [&](int j) {
     {
       const double* __restrict ur = &u(0, j);
@@ -82,23 +98,31 @@ void predict_face_velocity(CView u, CView v, CView gx_f, CView gy_f, View uf, Vi
 #pragma omp simd
       for (int i = 1; i < nx; ++i) f[i] = 0.5 * (ur[i - 1] + ur[i]) - dt * g[i];
     }
-    const double edge = fb.periodic_x ? 0.5 * (u(-1, j) + u(0, j)) - dt * gx_f(0, j) : 0.0;
-    uf(0, j) = edge;
-    uf(nx, j) = edge;
+    switch (sides[Left]) {
+      case FaceKind::Wall: uf(0, j) = 0.0; break;
+      case FaceKind::Periodic: uf(0, j) = 0.5 * (u(-1, j) + u(0, j)) - dt * gx_f(0, j); break;
+    }
+    switch (sides[Right]) {
+      case FaceKind::Wall: uf(nx, j) = 0.0; break;
+      case FaceKind::Periodic: uf(nx, j) = uf(0, j); break;  // face nx is face 0
+    }
   });
   parallel_rows(0, ny + 1, [&](int j) {
-    const bool boundary = (j == 0 || j == ny);
-    if (boundary && !fb.periodic_y) {
-      for (int i = 0; i < nx; ++i) vf(i, j) = 0.0;
-    } else {
-      const int jj = (j == ny) ? 0 : j;
-      const double* __restrict vs = &v(0, jj - 1);
-      const double* __restrict vn = &v(0, jj);
-      const double* __restrict g = &gy_f(0, jj);
-      double* __restrict f = &vf(0, j);
-#pragma omp simd
-      for (int i = 0; i < nx; ++i) f[i] = 0.5 * (vs[i] + vn[i]) - dt * g[i];
+    int jj = j;  // the face row computed
+    if (j == 0 || j == ny) {
+      switch (sides[j == 0 ? Bottom : Top]) {
+        case FaceKind::Wall:
+          for (int i = 0; i < nx; ++i) vf(i, j) = 0.0;
+          return;
+        case FaceKind::Periodic: jj = 0; break;  // face ny repeats face 0
+      }
     }
+    const double* __restrict vs = &v(0, jj - 1);
+    const double* __restrict vn = &v(0, jj);
+    const double* __restrict g = &gy_f(0, jj);
+    double* __restrict f = &vf(0, j);
+#pragma omp simd
+    for (int i = 0; i < nx; ++i) f[i] = 0.5 * (vs[i] + vn[i]) - dt * g[i];
   });
 }
 
@@ -128,7 +152,7 @@ double max_abs_face_divergence(CView uf, CView vf, int nx, int ny, double dx) {
 }
 
 void correct_face_velocity(View uf, View vf, CView dp, CView bx, CView by, int nx, int ny,
-                           double dx, double dt, FaceBoundary fb) {
+                           double dx, double dt, Sides sides) {
   const double c = dt / dx;
   parallel_rows(0, ny, [&](int j) {
     {
@@ -138,16 +162,24 @@ void correct_face_velocity(View uf, View vf, CView dp, CView bx, CView by, int n
 #pragma omp simd
       for (int i = 1; i < nx; ++i) f[i] -= c * b[i] * (d[i] - d[i - 1]);
     }
-    if (fb.periodic_x) {
-      const double e = uf(0, j) - c * bx(0, j) * (dp(0, j) - dp(-1, j));
-      uf(0, j) = e;
-      uf(nx, j) = e;
+    switch (sides[Left]) {
+      case FaceKind::Wall: break;  // no normal velocity to correct
+      case FaceKind::Periodic: uf(0, j) = uf(0, j) - c * bx(0, j) * (dp(0, j) - dp(-1, j)); break;
+    }
+    switch (sides[Right]) {
+      case FaceKind::Wall: break;
+      case FaceKind::Periodic: uf(nx, j) = uf(0, j); break;  // face nx is face 0
     }
   });
   parallel_rows(0, ny + 1, [&](int j) {
-    const bool boundary = (j == 0 || j == ny);
-    if (boundary && !fb.periodic_y) return;
-    if (j == ny) return;  // periodic: copied from face 0 below
+    if (j == 0 || j == ny) {
+      switch (sides[j == 0 ? Bottom : Top]) {
+        case FaceKind::Wall: return;
+        case FaceKind::Periodic:
+          if (j == ny) return;  // copied from face row 0 below
+          break;
+      }
+    }
     const double* __restrict b = &by(0, j);
     const double* __restrict dn = &dp(0, j);
     const double* __restrict ds = &dp(0, j - 1);
@@ -155,8 +187,12 @@ void correct_face_velocity(View uf, View vf, CView dp, CView bx, CView by, int n
 #pragma omp simd
     for (int i = 0; i < nx; ++i) f[i] -= c * b[i] * (dn[i] - ds[i]);
   });
-  if (fb.periodic_y)
-    for (int i = 0; i < nx; ++i) vf(i, ny) = vf(i, 0);
+  switch (sides[Top]) {
+    case FaceKind::Wall: break;
+    case FaceKind::Periodic:
+      for (int i = 0; i < nx; ++i) vf(i, ny) = vf(i, 0);
+      break;
+  }
 }
 
 void correct_cell_velocity(View u, View v, CView gx_f, CView gy_f, int nx, int ny, double dt) {

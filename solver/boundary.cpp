@@ -1,6 +1,26 @@
 #include "solver/boundary.hpp"
 
+#include <cmath>
+
 namespace refmap {
+
+double SideBc::speed(double t) const {
+  if (type != BcType::MovingWall) return 0.0;
+  return oscillating ? velocity * std::sin(omega * t + phase) : velocity;
+}
+
+Sides face_sides(const std::array<SideBc, 4>& bc) {
+  Sides s;
+  for (int k = 0; k < 4; ++k) {
+    switch (bc[k].type) {
+      case BcType::NoSlip:
+      case BcType::MovingWall:
+      case BcType::FreeSlip: s.kind[k] = FaceKind::Wall; break;
+      case BcType::Periodic: s.kind[k] = FaceKind::Periodic; break;
+    }
+  }
+  return s;
+}
 
 namespace {
 

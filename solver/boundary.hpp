@@ -10,6 +10,7 @@
 // padded width, so corner ghosts are consistent with both.
 #include <array>
 
+#include "kernels/boundary_kind.hpp"
 #include "solver/config.hpp"
 #include "solver/field.hpp"
 
@@ -20,7 +21,9 @@ void fill_vector_ghosts(Field& a, Field& b, const std::array<SideBc, 4>& bc, dou
                         double scale = 1.0);
 void fill_scalar_ghosts(Field& s, const std::array<SideBc, 4>& bc);
 
-inline bool periodic_x(const std::array<SideBc, 4>& bc) { return bc[Left].type == BcType::Periodic; }
-inline bool periodic_y(const std::array<SideBc, 4>& bc) { return bc[Bottom].type == BcType::Periodic; }
+/// The projection's and pressure solvers' view of the sides (kernels/boundary_kind.hpp):
+/// every wall type (no-slip, moving, free-slip) is a FaceKind::Wall.
+Sides face_sides(const std::array<SideBc, 4>& bc);
+
 
 }  // namespace refmap

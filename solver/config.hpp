@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "kernels/boundary_kind.hpp"
 #include "solver/grid.hpp"
 #include "solver/poisson.hpp"
 #include "solver/shape.hpp"
@@ -12,7 +13,6 @@
 namespace refmap {
 
 enum class BcType { NoSlip, MovingWall, FreeSlip, Periodic };
-enum Side { Left = 0, Right = 1, Bottom = 2, Top = 3 };
 
 /// Boundary condition of one side. `velocity` is the tangential wall speed of a moving
 /// wall (u on bottom/top, v on left/right); the normal velocity at a wall is always 0.
@@ -24,7 +24,7 @@ struct SideBc {
   /// when `oscillating` is true (the elastic-layer Couette flow needs it).
   bool oscillating = false;
   double omega = 0.0, phase = 0.0;
-  double speed(double t) const;
+  double speed(double t) const;  ///< defined in solver/boundary.cpp
 };
 
 /// A named line probe: `points` samples from (x0,y0) to (x1,y1) of a cell field

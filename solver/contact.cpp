@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/boundary.hpp"
+
 namespace refmap {
 
 namespace {
@@ -26,9 +28,13 @@ struct Contribution {
 
 Contact::Contact(const Config& cfg, double velocity_scale) : g_(cfg.grid) {
   const ContactOptions& o = cfg.contact;
-  for (int s = 0; s < 4; ++s) wall_[s] = o.walls && cfg.bc[s].type != BcType::Periodic;
-  px_ = cfg.bc[Left].type == BcType::Periodic;
-  py_ = cfg.bc[Bottom].type == BcType::Periodic;
+  sides_ = face_sides(cfg.bc);
+  for (int s = 0; s < 4; ++s) {
+    switch (sides_.kind[s]) {
+      case FaceKind::Wall: wall_[s] = o.walls; break;
+      case FaceKind::Periodic: wall_[s] = false; break;
+    }
+  }
   force_ = o.enabled && cfg.flow == "solve";
   d_ = o.range * g_.dx;
   h_ = 2.0 * g_.dx;
@@ -52,8 +58,8 @@ double Contact::min_dt(double rho_min) const {
 }
 
 double Contact::phi_at(const Solid& s, int gi, int gj) const {
-  if (px_) gi = ((gi % g_.nx) + g_.nx) % g_.nx;
-  if (py_) gj = ((gj % g_.ny) + g_.ny) % g_.ny;
+  if (sides_.periodic_x()) gi = ((gi % g_.nx) + g_.nx) % g_.nx;
+  if (sides_.periodic_y()) gj = ((gj % g_.ny) + g_.ny) % g_.ny;
   if (gi < 0 || gi >= g_.nx || gj < 0 || gj >= g_.ny) return s.band();
   return s.phi_global(gi, gj);
 }
@@ -90,7 +96,12 @@ void Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field
         for (int dir = 0; dir < 2; ++dir) {
           const int ni = dir == 0 ? gi - 1 : gi, nj = dir == 0 ? gj : gj - 1;
           const bool seam = dir == 0 ? ni < 0 : nj < 0;
-          if (seam && !(dir == 0 ? px_ : py_)) continue;  // a wall face: no normal flux
+          if (seam) {
+            switch (sides_[dir == 0 ? Left : Bottom]) {
+              case FaceKind::Wall: continue;  // no normal flux through a wall face
+              case FaceKind::Periodic: break;
+            }
+          }
           const double c1 = ramp(phi_at(a, ni, nj));
           if (c0 == c1) continue;
           const double pm = 0.5 * (p0 + pressure(dist(ni, nj)));
@@ -129,8 +140,8 @@ void Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field
       // windows may wrap, so there the whole window is visited.
       int bi0 = std::max(a.i0(), b.i0()) - 1, bi1 = std::min(a.i0() + a.ni(), b.i0() + b.ni());
       int bj0 = std::max(a.j0(), b.j0()) - 1, bj1 = std::min(a.j0() + a.nj(), b.j0() + b.nj());
-      if (px_) { bi0 = -1; bi1 = nx; }
-      if (py_) { bj0 = -1; bj1 = ny; }
+      if (sides_.periodic_x()) { bi0 = -1; bi1 = nx; }
+      if (sides_.periodic_y()) { bj0 = -1; bj1 = ny; }
       if (bi0 >= bi1 || bj0 >= bj1) continue;  // windows apart: no contact possible
       layer(a, [&](int gi, int gj) { return phi_at(b, gi, gj); }, ax, ay, bi0, bi1, bj0, bj1);
       layer(b, [&](int gi, int gj) { return phi_at(a, gi, gj); }, bx, by, bi0, bi1, bj0, bj1);

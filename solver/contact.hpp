@@ -68,6 +68,7 @@
 #include <string>
 #include <vector>
 
+#include "kernels/boundary_kind.hpp"
 #include "solver/config.hpp"
 #include "solver/field.hpp"
 #include "solver/grid.hpp"
@@ -136,7 +137,7 @@ class Contact {
   /// phi of s at a global cell, wrapped across periodic directions, +band outside.
   double phi_at(const Solid& s, int gi, int gj) const;
   std::array<bool, 4> wall_{};
-  bool px_ = false, py_ = false;
+  Sides sides_;
   bool force_ = false;
   double P_ = 0.0, d_ = 0.0, h_ = 0.0, sentinel_ = 0.0;
   std::vector<double> gap_solid_, gap_wall_;

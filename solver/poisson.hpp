@@ -4,15 +4,17 @@
 //     (1/dx^2) * sum_faces beta_f (x_nb - x_P) = rhs_P      for every cell P,
 //
 // with beta = 1/rho on faces. beta_x is an x-face field ((nx+1) x ny, face i is the left
-// face of cell i), beta_y a y-face field (nx x (ny+1)). Walls are homogeneous Neumann:
-// the caller sets beta = 0 on wall faces. A periodic direction wraps: face 0 and face n
-// are the same face and carry the same beta. refmap has no Dirichlet pressure boundary,
-// so every problem is singular (constants are the null space): solvers project the
-// right-hand side onto zero mean and return the zero-mean solution.
+// face of cell i), beta_y a y-face field (nx x (ny+1)). Each side has a FaceKind
+// (kernels/boundary_kind.hpp). Walls are homogeneous Neumann: the caller sets beta = 0 on
+// wall faces. A periodic direction wraps: face 0 and face n are the same face and carry
+// the same beta. refmap has no Dirichlet pressure boundary, so every problem is singular
+// (constants are the null space): solvers project the right-hand side onto zero mean and
+// return the zero-mean solution.
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "kernels/boundary_kind.hpp"
 #include "solver/field.hpp"
 #include "solver/grid.hpp"
 
@@ -20,7 +22,7 @@ namespace refmap {
 
 struct PoissonOperator {
   Grid grid;
-  bool periodic_x = false, periodic_y = false;
+  Sides sides;  ///< walls on all four sides by default
   const Field* beta_x = nullptr;  ///< (nx+1) x ny
   const Field* beta_y = nullptr;  ///< nx x (ny+1)
 };

@@ -21,8 +21,7 @@ mg::Stencil CGSolver::stencil() const {
   mg::Stencil s;
   s.nx = op_.grid.nx;
   s.ny = op_.grid.ny;
-  s.px = op_.periodic_x;
-  s.py = op_.periodic_y;
+  s.sides = op_.sides;
   s.tx = tx_.cview();
   s.ty = ty_.cview();
   s.invd = invd_.cview();

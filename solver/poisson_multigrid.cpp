@@ -57,9 +57,11 @@ void coarsen_operator(const MultigridHierarchy::Level& F, MultigridHierarchy::Le
     for (int k = 0; k < K; ++k) wl += F.try_.rw[J * K + k] * F.wy[F.try_.ri[J * K + k]];
     const double tang = C.wy[J] / wl;
     for (int I = 0; I <= C.nx; ++I) {
-      if (!C.px && (I == 0 || I == C.nx)) {
-        C.tx(I, J) = 0.0;
-        continue;
+      if (I == 0 || I == C.nx) {
+        switch (C.sides[I == 0 ? Left : Right]) {
+          case FaceKind::Wall: C.tx(I, J) = 0.0; continue;
+          case FaceKind::Periodic: break;  // the wrap face: rediscretised like an interior one
+        }
       }
       const int e = (I == C.nx) ? F.nx : 2 * I;
       double s = 0.0;
@@ -75,9 +77,13 @@ void coarsen_operator(const MultigridHierarchy::Level& F, MultigridHierarchy::Le
   }
 #pragma omp parallel for schedule(static) if (par)
   for (int J = 0; J <= C.ny; ++J) {
-    if (!C.py && (J == 0 || J == C.ny)) {
-      for (int I = 0; I < C.nx; ++I) C.ty(I, J) = 0.0;
-      continue;
+    if (J == 0 || J == C.ny) {
+      switch (C.sides[J == 0 ? Bottom : Top]) {
+        case FaceKind::Wall:
+          for (int I = 0; I < C.nx; ++I) C.ty(I, J) = 0.0;
+          continue;
+        case FaceKind::Periodic: break;
+      }
     }
     const int e = (J == C.ny) ? F.ny : 2 * J;
     const double normal = face_dist(F.cy, F.ly, e) / face_dist(C.cy, C.ly, J);
@@ -109,22 +115,39 @@ void build_fine_operator(const PoissonOperator& op, Field& tx, Field& ty, Field&
   if (invd.nx() != nx || invd.ny() != ny || invd.ng() < 1) invd.resize(nx, ny, 1);
   const Field& bx = *op.beta_x;
   const Field& by = *op.beta_y;
-  const bool px = op.periodic_x, py = op.periodic_y;
+  const Sides sides = op.sides;
   const bool par = op.grid.cells() >= kMultigridMinParallelCells;
+  // a periodic direction's faces 0 and n are one face: both get the mean of the two betas
 #pragma omp parallel for schedule(static) if (par)
   for (int j = 0; j < ny; ++j) {
     for (int i = 1; i < nx; ++i) tx(i, j) = bx(i, j);
-    const double wrap = px ? 0.5 * (bx(0, j) + bx(nx, j)) : 0.0;
-    tx(0, j) = wrap;
-    tx(nx, j) = wrap;
+    switch (sides[Left]) {
+      case FaceKind::Wall: tx(0, j) = 0.0; break;
+      case FaceKind::Periodic: tx(0, j) = 0.5 * (bx(0, j) + bx(nx, j)); break;
+    }
+    switch (sides[Right]) {
+      case FaceKind::Wall: tx(nx, j) = 0.0; break;
+      case FaceKind::Periodic: tx(nx, j) = tx(0, j); break;
+    }
   }
 #pragma omp parallel for schedule(static) if (par)
   for (int j = 1; j < ny; ++j)
     for (int i = 0; i < nx; ++i) ty(i, j) = by(i, j);
-  for (int i = 0; i < nx; ++i) {
-    const double wrap = py ? 0.5 * (by(i, 0) + by(i, ny)) : 0.0;
-    ty(i, 0) = wrap;
-    ty(i, ny) = wrap;
+  switch (sides[Bottom]) {
+    case FaceKind::Wall:
+      for (int i = 0; i < nx; ++i) ty(i, 0) = 0.0;
+      break;
+    case FaceKind::Periodic:
+      for (int i = 0; i < nx; ++i) ty(i, 0) = 0.5 * (by(i, 0) + by(i, ny));
+      break;
+  }
+  switch (sides[Top]) {
+    case FaceKind::Wall:
+      for (int i = 0; i < nx; ++i) ty(i, ny) = 0.0;
+      break;
+    case FaceKind::Periodic:
+      for (int i = 0; i < nx; ++i) ty(i, ny) = ty(i, 0);
+      break;
   }
   mg::Stencil s;
   s.nx = nx;
@@ -153,8 +176,7 @@ mg::Stencil MultigridHierarchy::stencil(int l) const {
   mg::Stencil s;
   s.nx = L.nx;
   s.ny = L.ny;
-  s.px = L.px;
-  s.py = L.py;
+  s.sides = L.sides;
   s.tx = L.tx.cview();
   s.ty = L.ty.cview();
   s.invd = L.invd.cview();
@@ -185,9 +207,9 @@ void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& 
   symmetric_ = symmetric;
 
   const int nx = op.grid.nx, ny = op.grid.ny;
-  const bool px = op.periodic_x, py = op.periodic_y;
+  const Sides sides = op.sides;
   const bool reuse = !levels_.empty() && levels_[0].nx == nx && levels_[0].ny == ny &&
-                     levels_[0].px == px && levels_[0].py == py &&
+                     levels_[0].sides == sides &&
                      coarse_cells_ == opt.coarse_cells &&
                      scratch_.nthreads >= omp_get_max_threads();
   coarse_cells_ = opt.coarse_cells;
@@ -197,8 +219,7 @@ void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& 
     Level L0;
     L0.nx = nx;
     L0.ny = ny;
-    L0.px = px;
-    L0.py = py;
+    L0.sides = sides;
     L0.cx.resize(nx);
     L0.wx.assign(nx, 1.0);
     L0.cy.resize(ny);
@@ -212,12 +233,11 @@ void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& 
       Level& F = levels_.back();
       if (std::size_t(F.nx) * F.ny <= std::size_t(coarse_cells_) || F.nx < 4 || F.ny < 4) break;
       Level C;
-      C.px = px;
-      C.py = py;
+      C.sides = sides;
       C.lx = F.lx;
       C.ly = F.ly;
-      F.trx = mg::build_transfer(F.cx, F.wx, F.lx, px, C.cx, C.wx);
-      F.try_ = mg::build_transfer(F.cy, F.wy, F.ly, py, C.cy, C.wy);
+      F.trx = mg::build_transfer(F.cx, F.wx, F.lx, sides[Left], sides[Right], C.cx, C.wx);
+      F.try_ = mg::build_transfer(F.cy, F.wy, F.ly, sides[Bottom], sides[Top], C.cy, C.wy);
       C.nx = int(C.cx.size());
       C.ny = int(C.cy.size());
       C.tx.resize(C.nx + 1, C.ny, 1);
@@ -258,13 +278,15 @@ void MultigridHierarchy::build_coarse_solver() {
   c.dense = n <= 512;
   c.b.assign(n, 0.0);
   auto idx = [nx](int i, int j) { return i + nx * j; };
-  // neighbours with coefficient: (k, m, T) for every interior/periodic face once
+  // neighbours with coefficient: (k, m, T) for every interior/periodic face once (wall
+  // faces carry T = 0 and couple nothing)
+  const bool wrap_x = L.sides.periodic_x(), wrap_y = L.sides.periodic_y();
   auto for_faces = [&](auto&& fn) {
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
         // east face i+1 (wraps when periodic), north face j+1
-        if (i + 1 < nx || L.px) fn(idx(i, j), idx((i + 1) % nx, j), L.tx(i + 1, j));
-        if (j + 1 < ny || L.py) fn(idx(i, j), idx(i, (j + 1) % ny), L.ty(i, j + 1));
+        if (i + 1 < nx || wrap_x) fn(idx(i, j), idx((i + 1) % nx, j), L.tx(i + 1, j));
+        if (j + 1 < ny || wrap_y) fn(idx(i, j), idx(i, (j + 1) % ny), L.ty(i, j + 1));
       }
   };
   if (c.dense) {

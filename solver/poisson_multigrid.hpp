@@ -62,7 +62,7 @@ class MultigridHierarchy {
  public:
   struct Level {
     int nx = 0, ny = 0;
-    bool px = false, py = false;
+    Sides sides;
     std::vector<double> cx, cy, wx, wy;  ///< cell centres / widths, finest-cell units
     double lx = 0, ly = 0;               ///< domain length, finest-cell units
     Field tx, ty, invd;                  ///< operator

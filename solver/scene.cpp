@@ -26,11 +26,6 @@
 
 namespace refmap {
 
-double SideBc::speed(double t) const {
-  if (type != BcType::MovingWall) return 0.0;
-  return oscillating ? velocity * std::sin(omega * t + phase) : velocity;
-}
-
 namespace {
 
 std::string format_position(const std::string& file, long line, long column) {

@@ -18,7 +18,7 @@ namespace refmap {
 
 namespace {
 
-FaceBoundary face_boundary(const Config& c) { return {periodic_x(c.bc), periodic_y(c.bc)}; }
+Sides face_boundary(const Config& c) { return face_sides(c.bc); }
 
 }  // namespace
 
@@ -32,8 +32,7 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
   for (Field* f : {&k2x_, &k2y_, &k3x_, &k3y_, &k4x_, &k4y_}) f->resize(nx, ny, ng);
   bool elastic = false;
   for (const SolidSpec& sp : cfg_.solids) {
-    solids_.push_back(std::make_unique<Solid>(sp, cfg_.solid_opt, cfg_.grid, periodic_x(cfg_.bc),
-                                              periodic_y(cfg_.bc)));
+    solids_.push_back(std::make_unique<Solid>(sp, cfg_.solid_opt, cfg_.grid, face_boundary(cfg_)));
     elastic = elastic || sp.mu_s > 0.0;
   }
   if (elastic)
@@ -198,7 +197,7 @@ void Simulation::initialise() {
   // Initial projection: make the face velocities exactly divergence-free (and remove the
   // discrete divergence of the initial cell field) without touching the pressure.
   apply_velocity_bc(u_, v_, t_);
-  const FaceBoundary fb = face_boundary(cfg_);
+  const Sides fb = face_boundary(cfg_);
   gxf_.fill(0.0);
   gyf_.fill(0.0);
   predict_face_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), uf_.view(), vf_.view(),
@@ -225,8 +224,7 @@ void Simulation::build_poisson_coefficients() {
   face_beta(rho_.view(), beta_x_.view(), beta_y_.view(), g.nx, g.ny, face_boundary(cfg_));
   PoissonOperator op;
   op.grid = g;
-  op.periodic_x = periodic_x(cfg_.bc);
-  op.periodic_y = periodic_y(cfg_.bc);
+  op.sides = face_boundary(cfg_);
   op.beta_x = &beta_x_;
   op.beta_y = &beta_y_;
   poisson_->setup(op);
@@ -271,16 +269,27 @@ void Simulation::add_contact_face_accel() {
   // G_f -= beta_f F_f: the contact force per unit volume on each face, over the face density
   if (!(contact_ && contact_->force_enabled())) return;
   const Grid& g = cfg_.grid;
-  const bool px = periodic_x(cfg_.bc), py = periodic_y(cfg_.bc);
+  const Sides sides = face_boundary(cfg_);
+  // the boundary faces of a direction: a wall face carries no normal velocity (nothing to
+  // add); a periodic direction's faces 0 and n are one face
+  bool x_seam = false, y_seam = false;
+  switch (sides[Left]) {
+    case FaceKind::Wall: break;
+    case FaceKind::Periodic: x_seam = true; break;
+  }
+  switch (sides[Bottom]) {
+    case FaceKind::Wall: break;
+    case FaceKind::Periodic: y_seam = true; break;
+  }
   parallel_rows(0, g.ny, [&](int j) {
     for (int i = 1; i < g.nx; ++i) gxf_(i, j) -= beta_x_(i, j) * cfx_(i, j);
-    if (px) {
+    if (x_seam) {
       gxf_(0, j) -= beta_x_(0, j) * cfx_(0, j);
       gxf_(g.nx, j) = gxf_(0, j);
     }
   });
   parallel_rows(0, g.ny + 1, [&](int j) {
-    if ((j == 0 || j == g.ny) && !py) return;  // wall faces carry no normal velocity
+    if ((j == 0 || j == g.ny) && !y_seam) return;
     const int jj = j == g.ny ? 0 : j;
     for (int i = 0; i < g.nx; ++i) gyf_(i, j) -= beta_y_(i, jj) * cfy_(i, jj);
   });
@@ -407,7 +416,7 @@ void Simulation::compute_contact_force() {
 void Simulation::predict_face_velocities(double dt) {
   ScopedPhase ph(timers_, "face velocities");
   const Grid& g = cfg_.grid;
-  const FaceBoundary fb = face_boundary(cfg_);
+  const Sides fb = face_boundary(cfg_);
   apply_velocity_bc(u_, v_, t_ + dt);
   fill_scalar_ghosts(p_, cfg_.bc);
   // step 5, eq. (5.3): Rhie-Chow-like face velocity with the old pressure and the body force
@@ -428,7 +437,7 @@ void Simulation::solve_pressure() {
 void Simulation::project(double dt) {
   ScopedPhase ph(timers_, "projection");
   const Grid& g = cfg_.grid;
-  const FaceBoundary fb = face_boundary(cfg_);
+  const Sides fb = face_boundary(cfg_);
   fill_scalar_ghosts(dp_, cfg_.bc);
   // step 7, eq. (5.5)
   parallel_rows(0, g.ny, [&](int j) {

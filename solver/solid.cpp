@@ -18,9 +18,8 @@ constexpr int kMarginMin = 3;  // cells between the band and the window edge bef
 constexpr int kMarginNew = 8;  // margin given to a new window (hysteresis)
 }  // namespace
 
-Solid::Solid(const SolidSpec& spec, const SolidsOptions& opt, const Grid& g, bool periodic_x,
-             bool periodic_y)
-    : spec_(spec), opt_(opt), grid_(g), px_(periodic_x), py_(periodic_y) {
+Solid::Solid(const SolidSpec& spec, const SolidsOptions& opt, const Grid& g, Sides sides)
+    : spec_(spec), opt_(opt), grid_(g), sides_(sides) {
   shape_ = make_shape(spec_.shape);
   band_ = opt_.band * g.dx;
   wt_ = opt_.transition * g.dx;
@@ -30,8 +29,8 @@ Solid::Solid(const SolidSpec& spec, const SolidsOptions& opt, const Grid& g, boo
 void Solid::initialise() {
   const Grid& g = grid_;
   const BoundingBox bb = shape_->bbox();
-  wrap_x_ = px_ && (bb.xmax - bb.xmin + 2.0 * band_ >= g.lx());
-  wrap_y_ = py_ && (bb.ymax - bb.ymin + 2.0 * band_ >= g.ly());
+  wrap_x_ = sides_.periodic_x() && (bb.xmax - bb.xmin + 2.0 * band_ >= g.lx());
+  wrap_y_ = sides_.periodic_y() && (bb.ymax - bb.ymin + 2.0 * band_ >= g.ly());
   // initial window: the reference bounding box plus band and margin, in cells
   auto lo = [&](double x, double x0) { return int(std::floor((x - x0) / g.dx)) - kMarginNew; };
   auto hi = [&](double x, double x0) { return int(std::ceil((x - x0) / g.dx)) + kMarginNew; };
@@ -43,11 +42,11 @@ void Solid::initialise() {
   c = std::max(c, 0); d = std::min(d, g.ny);
   if (b <= a || d <= c)
     throw std::invalid_argument("solid '" + spec_.name + "' lies outside the domain");
-  if (!wrap_x_ && px_ && (bb.xmin - band_ < g.x0 || bb.xmax + band_ > g.x0 + g.lx()))
+  if (!wrap_x_ && sides_.periodic_x() && (bb.xmin - band_ < g.x0 || bb.xmax + band_ > g.x0 + g.lx()))
     throw std::invalid_argument("solid '" + spec_.name +
                                 "' crosses a periodic boundary in x without spanning it "
                                 "(not supported)");
-  if (!wrap_y_ && py_ && (bb.ymin - band_ < g.y0 || bb.ymax + band_ > g.y0 + g.ly()))
+  if (!wrap_y_ && sides_.periodic_y() && (bb.ymin - band_ < g.y0 || bb.ymax + band_ > g.y0 + g.ly()))
     throw std::invalid_argument("solid '" + spec_.name +
                                 "' crosses a periodic boundary in y without spanning it "
                                 "(not supported)");
@@ -215,8 +214,8 @@ void Solid::fit_window(bool force) {
   bool ok_x = wrap_x_ || inside(a, b, i0_, ni_, g.nx);
   bool ok_y = wrap_y_ || inside(c, d, j0_, nj_, g.ny);
   if (!force && ok_x && ok_y) return;
-  if ((!wrap_x_ && px_ && (a - kMarginMin < 0 || b + kMarginMin > g.nx)) ||
-      (!wrap_y_ && py_ && (c - kMarginMin < 0 || d + kMarginMin > g.ny)))
+  if ((!wrap_x_ && sides_.periodic_x() && (a - kMarginMin < 0 || b + kMarginMin > g.nx)) ||
+      (!wrap_y_ && sides_.periodic_y() && (c - kMarginMin < 0 || d + kMarginMin > g.ny)))
     throw std::runtime_error("solid '" + spec_.name +
                              "' reached a periodic boundary (solids may not cross one unless "
                              "they span the periodic direction)");

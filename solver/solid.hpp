@@ -12,6 +12,7 @@
 #include <memory>
 #include <string>
 
+#include "kernels/boundary_kind.hpp"
 #include "kernels/fast_marching.hpp"
 #include "solver/config.hpp"
 #include "solver/field.hpp"
@@ -37,8 +38,9 @@ struct SolidDiagnostics {
 
 class Solid {
  public:
-  Solid(const SolidSpec& spec, const SolidsOptions& opt, const Grid& g, bool periodic_x,
-        bool periodic_y);
+  /// sides: which directions are periodic (a solid may only cross a periodic boundary by
+  /// spanning that direction).
+  Solid(const SolidSpec& spec, const SolidsOptions& opt, const Grid& g, Sides sides);
 
   const SolidSpec& spec() const { return spec_; }
   const Shape& shape() const { return *shape_; }
@@ -105,7 +107,7 @@ class Solid {
   SolidSpec spec_;
   SolidsOptions opt_;
   Grid grid_;
-  bool px_, py_;
+  Sides sides_;
   bool wrap_x_ = false, wrap_y_ = false;  ///< window spans a periodic direction
   std::unique_ptr<Shape> shape_;
   double band_, wt_;

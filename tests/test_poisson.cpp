@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "bench/poisson_problem.hpp"
 #include "solver/poisson.hpp"
 #include "solver/poisson_cg.hpp"
 #include "solver/poisson_multigrid.hpp"
+#include "tests/fixtures/poisson_problem.hpp"
 
 namespace refmap {
 namespace {
