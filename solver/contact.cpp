@@ -29,7 +29,7 @@ Contact::Contact(const Config& cfg, double velocity_scale) : g_(cfg.grid) {
   for (int s = 0; s < 4; ++s) wall_[s] = o.walls && cfg.bc[s].type != BcType::Periodic;
   px_ = cfg.bc[Left].type == BcType::Periodic;
   py_ = cfg.bc[Bottom].type == BcType::Periodic;
-  force_ = o.enabled && cfg.flow == "solve";
+  force_ = o.enabled && cfg.flow == FlowMode::Solve;
   d_ = o.range * g_.dx;
   h_ = 2.0 * g_.dx;
   double rho_max = cfg.rho_f;

@@ -24,6 +24,7 @@
 #endif
 
 #include "solver/config.hpp"
+#include "solver/option_names.hpp"
 #include "solver/scene.hpp"
 #include "solver/simulation.hpp"
 
@@ -184,7 +185,7 @@ int cmd_run(const std::string& scene, std::string out, int threads, bool threads
       std::snprintf(line, sizeof line,
                     "solid %-15s %s extrapolation: %ld calls, %ld cells filled, %ld fallbacks%s, "
                     "%ld window moves\n",
-                    solid->spec().name.c_str(), sim.config().solid_opt.extrapolation.c_str(), c.calls,
+                    solid->spec().name.c_str(), refmap::to_string(sim.config().solid_opt.extrapolation), c.calls,
                     c.cells_filled, c.fallbacks,
                     c.iterations ? (", " + std::to_string(c.iterations) + " PDE iterations").c_str() : "",
                     solid->rewindows());

@@ -23,6 +23,7 @@
 #include <toml++/toml.h>
 
 #include "solver/expression.hpp"
+#include "solver/option_names.hpp"
 
 namespace refmap {
 
@@ -286,6 +287,21 @@ class Table {
       if (s == c) return s;
     fail(key, "unknown value " + dq(s) + suggestion(s, choices, true) + " (expected one of " +
                   join(choices, ", ", true) + ")");
+  }
+
+  /// A named option (solver/option_names.hpp): canonical names or aliases are accepted;
+  /// the message of an unknown name lists the canonical ones.
+  template <class E>
+  E option(std::string_view key, E def) const {
+    return option<E>(key, std::optional<E>(def));
+  }
+  template <class E>
+  E option(std::string_view key, std::optional<E> def = std::nullopt) const {
+    const std::vector<std::string> names = canonical_names<E>();
+    std::string s = string(key, def ? std::optional<std::string>(to_string(*def)) : std::nullopt);
+    if (auto e = parse_option<E>(s)) return *e;
+    fail(key, "unknown value " + dq(s) + suggestion(s, names, true) + " (expected one of " + join(names, ", ", true) +
+                  ")");
   }
 
   std::array<double, 2> vec2(std::string_view key, std::optional<std::array<double, 2>> def = std::nullopt) const {
@@ -571,20 +587,22 @@ void parse_initial(const Ctx& ctx, const Table& top, Config& cfg) {
   Table in(ctx, *t, "initial");
   in.allow({"velocity", "u", "v", "amplitude", "wavenumber", "u_expr", "v_expr"});
   InitialVelocity& iv = cfg.init;
-  iv.kind = in.choice("velocity", {"zero", "uniform", "taylor_green", "expression"}, std::string("zero"));
-  struct Use { const char* key; const char* kind; };
-  for (Use u : {Use{"u", "uniform"}, {"v", "uniform"}, {"amplitude", "taylor_green"}, {"wavenumber", "taylor_green"},
-                {"u_expr", "expression"}, {"v_expr", "expression"}})
+  iv.kind = in.option("velocity", iv.kind);
+  struct Use { const char* key; InitialKind kind; };
+  for (Use u : {Use{"u", InitialKind::Uniform}, {"v", InitialKind::Uniform}, {"amplitude", InitialKind::TaylorGreen},
+                {"wavenumber", InitialKind::TaylorGreen}, {"u_expr", InitialKind::Expression},
+                {"v_expr", InitialKind::Expression}})
     if (in.has(u.key) && iv.kind != u.kind)
-      in.fail(u.key, std::string("only used with initial.velocity = \"") + u.kind + "\" (velocity is \"" + iv.kind + "\")");
-  if (iv.kind == "uniform") {
+      in.fail(u.key, std::string("only used with initial.velocity = \"") + to_string(u.kind) + "\" (velocity is \"" +
+                         to_string(iv.kind) + "\")");
+  if (iv.kind == InitialKind::Uniform) {
     iv.u = in.number("u", 0.0);
     iv.v = in.number("v", 0.0);
-  } else if (iv.kind == "taylor_green") {
+  } else if (iv.kind == InitialKind::TaylorGreen) {
     iv.amplitude = in.number("amplitude", 1.0);
     iv.wavenumber = in.number("wavenumber", 0.0);
     in.require(iv.wavenumber >= 0, "wavenumber", "must be >= 0 (0 means 2 pi / domain.lx), got " + fmt_num(iv.wavenumber));
-  } else if (iv.kind == "expression") {
+  } else if (iv.kind == InitialKind::Expression) {
     // a plain number is accepted as an expression too (u_expr = 0)
     auto expr_text = [&](const char* key) {
       const toml::node* n = in.node(key);
@@ -649,11 +667,11 @@ void parse_solver(const Ctx& ctx, const Table& top, Config& cfg) {
   s.allow({"flow", "advection", "poisson", "cycle", "smoother", "pre_smooth", "post_smooth", "tol", "max_iter",
            "coarse_cells"});
   PoissonOptions& p = cfg.poisson;
-  cfg.flow = s.choice("flow", {"solve", "prescribed"}, cfg.flow);
-  cfg.advection = s.choice("advection", {"central", "superbee"}, cfg.advection);
-  p.method = s.choice("poisson", {"multigrid", "cg", "mgpcg"}, p.method);
-  p.cycle = s.choice("cycle", {"V", "F"}, p.cycle);
-  p.smoother = s.choice("smoother", {"rbgs", "jacobi"}, p.smoother);
+  cfg.flow = s.option("flow", cfg.flow);
+  cfg.advection = s.option("advection", cfg.advection);
+  p.method = s.option("poisson", p.method);
+  p.cycle = s.option("cycle", p.cycle);
+  p.smoother = s.option("smoother", p.smoother);
   for (auto [key, dst] : {std::pair<const char*, int*>{"pre_smooth", &p.pre_smooth}, {"post_smooth", &p.post_smooth}}) {
     const long n = s.integer(key, *dst);
     s.require(n >= 1 && n <= 100, key, "must be in [1, 100], got " + std::to_string(n));
@@ -732,7 +750,7 @@ void parse_solids_options(const Ctx& ctx, const Table& top, Config& cfg) {
   s.allow({"extrapolation", "lsq_radius", "band", "transition", "conservative", "stress_discretisation", "xi_advection", "solid_cfl",
            "reinitialise", "pde_tol", "pde_max_iter"});
   SolidsOptions& o = cfg.solid_opt;
-  o.extrapolation = s.choice("extrapolation", {"lsq", "pde"}, o.extrapolation);
+  o.extrapolation = s.option("extrapolation", o.extrapolation);
   o.lsq_radius = s.number("lsq_radius", o.lsq_radius);
   s.require(o.lsq_radius * o.lsq_radius >= 8.0 - 1e-6 && o.lsq_radius * o.lsq_radius < 33.0, "lsq_radius",
             "must be in [2.83, 5.74] (cells: from the 5 x 5 block, 2 sqrt(2), to the paper's 4 sqrt(2) = 5.66), "
@@ -750,8 +768,8 @@ void parse_solids_options(const Ctx& ctx, const Table& top, Config& cfg) {
                        " (the smoothed interface must lie inside the extrapolated band), got " + fmt_num(o.band));
   }
   o.conservative = s.boolean("conservative", o.conservative);
-  o.stress_discretisation = s.choice("stress_discretisation", {"face", "cell"}, o.stress_discretisation);
-  o.xi_advection = s.choice("xi_advection", {"central", "superbee", "vanleer"}, o.xi_advection);
+  o.stress_form = s.option("stress_discretisation", o.stress_form);
+  o.xi_advection = s.option("xi_advection", o.xi_advection);
   o.solid_cfl = s.number("solid_cfl", o.solid_cfl);
   s.require(o.solid_cfl > 0 && o.solid_cfl <= 2, "solid_cfl", "must be in (0, 2], got " + fmt_num(o.solid_cfl));
   o.reinitialise = s.boolean("reinitialise", o.reinitialise);
@@ -783,17 +801,17 @@ void parse_contact(const Ctx& ctx, const Table& top, Config& cfg) {
 
 /// Keys of a [[solid]] that belong to the shape, per shape kind.
 struct ShapeKeys {
-  const char* kind;
+  ShapeKind kind;
   std::vector<std::string> keys;
 };
 
 const std::vector<ShapeKeys>& shape_keys() {
   static const std::vector<ShapeKeys> k = {
-      {"circle", {"center", "radius"}},
-      {"ellipse", {"center", "semi_axes", "angle"}},
-      {"rounded_rectangle", {"center", "half_size", "corner_radius", "angle"}},
-      {"zalesak", {"center", "radius", "slot_half_width", "slot_top", "angle"}},
-      {"tabulated", {"file"}},
+      {ShapeKind::Circle, {"center", "radius"}},
+      {ShapeKind::Ellipse, {"center", "semi_axes", "angle"}},
+      {ShapeKind::RoundedRectangle, {"center", "half_size", "corner_radius", "angle"}},
+      {ShapeKind::Zalesak, {"center", "radius", "slot_half_width", "slot_top", "angle"}},
+      {ShapeKind::Tabulated, {"file"}},
   };
   return k;
 }
@@ -803,17 +821,15 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
   if (!n) return;
   const toml::array* arr = n->as_array();
   if (!arr) top.fail("solid", "expected an array of tables ([[solid]] sections), got " + describe(*n));
-  std::vector<std::string> kinds;
   std::vector<std::string> all_shape_keys;
   for (const auto& sk : shape_keys()) {
-    kinds.push_back(sk.kind);
     for (const auto& k : sk.keys)
       if (std::find(all_shape_keys.begin(), all_shape_keys.end(), k) == all_shape_keys.end()) all_shape_keys.push_back(k);
   }
   const Grid& g = cfg.grid;
   const std::filesystem::path scene_dir = std::filesystem::path(ctx.file).parent_path();
   // a prescribed flow moves the solids kinematically: their material is not used
-  const bool need_material = cfg.flow == "solve";
+  const bool need_material = cfg.flow == FlowMode::Solve;
   std::set<std::string> names;
   for (std::size_t i = 0; i < arr->size(); ++i) {
     const std::string prefix = "solid[" + std::to_string(i) + "]";
@@ -832,34 +848,34 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
 
     // ---- shape
     ShapeParams& sh = sp.shape;
-    sh.kind = s.choice("shape", kinds);
+    sh.kind = s.option<ShapeKind>("shape");
     const std::vector<std::string>* own = nullptr;
     for (const auto& sk : shape_keys())
       if (sh.kind == sk.kind) own = &sk.keys;
     for (const auto& k : all_shape_keys)
       if (s.has(k) && std::find(own->begin(), own->end(), k) == own->end())
-        s.fail(k, "not a parameter of shape = " + dq(sh.kind) + " (it takes " + join(*own, ", ") + ")");
+        s.fail(k, "not a parameter of shape = " + dq(to_string(sh.kind)) + " (it takes " + join(*own, ", ") + ")");
 
     auto positive = [&](const char* key, double v) {
       s.require(v > 0, key, "must be > 0, got " + fmt_num(v));
     };
-    if (sh.kind != "tabulated") {
+    if (sh.kind != ShapeKind::Tabulated) {
       const auto c = s.vec2("center");
       sh.cx = c[0];
       sh.cy = c[1];
-      sh.angle = sh.kind == "circle" ? 0.0 : s.number("angle", 0.0);
+      sh.angle = sh.kind == ShapeKind::Circle ? 0.0 : s.number("angle", 0.0);
     }
-    if (sh.kind == "circle" || sh.kind == "zalesak") {
+    if (sh.kind == ShapeKind::Circle || sh.kind == ShapeKind::Zalesak) {
       sh.radius = s.number("radius");
       positive("radius", sh.radius);
     }
-    if (sh.kind == "ellipse") {
+    if (sh.kind == ShapeKind::Ellipse) {
       const auto ab = s.vec2("semi_axes");
       s.require(ab[0] > 0 && ab[1] > 0, "semi_axes",
                 "both semi-axes must be > 0, got [" + fmt_num(ab[0]) + ", " + fmt_num(ab[1]) + "]");
       sh.a = ab[0];
       sh.b = ab[1];
-    } else if (sh.kind == "rounded_rectangle") {
+    } else if (sh.kind == ShapeKind::RoundedRectangle) {
       const auto hs = s.vec2("half_size");
       s.require(hs[0] > 0 && hs[1] > 0, "half_size",
                 "both half-sizes must be > 0, got [" + fmt_num(hs[0]) + ", " + fmt_num(hs[1]) + "]");
@@ -869,7 +885,7 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
       const double rmax = std::min(hs[0], hs[1]);
       s.require(sh.corner_radius >= 0 && sh.corner_radius <= rmax, "corner_radius",
                 "must be in [0, min(half_size) = " + fmt_num(rmax) + "], got " + fmt_num(sh.corner_radius));
-    } else if (sh.kind == "zalesak") {
+    } else if (sh.kind == ShapeKind::Zalesak) {
       sh.slot_half_width = s.number("slot_half_width");
       s.require(sh.slot_half_width > 0 && sh.slot_half_width < sh.radius, "slot_half_width",
                 "must be in (0, radius = " + fmt_num(sh.radius) + "), got " + fmt_num(sh.slot_half_width));
@@ -878,7 +894,7 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
       s.require(sh.slot_top > sh.cy - h && sh.slot_top < sh.cy + h, "slot_top",
                 "must be strictly between the y where the slot walls meet the circle, (" + fmt_num(sh.cy - h) + ", " +
                     fmt_num(sh.cy + h) + "), got " + fmt_num(sh.slot_top));
-    } else if (sh.kind == "tabulated") {
+    } else if (sh.kind == ShapeKind::Tabulated) {
       const std::string f = s.string("file");
       s.require(!f.empty(), "file", "must be a non-empty path");
       std::filesystem::path fp(f);
@@ -893,7 +909,7 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
     }
 
     // build it now, so that bad geometry fails at load time
-    const char* shape_key = sh.kind == "tabulated" ? "file" : "shape";
+    const char* shape_key = sh.kind == ShapeKind::Tabulated ? "file" : "shape";
     std::unique_ptr<Shape> shape;
     try {
       shape = make_shape(sh);
@@ -903,7 +919,7 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
     const BoundingBox bb = shape->bbox();
     const double X0 = g.x0, X1 = g.x0 + g.lx(), Y0 = g.y0, Y1 = g.y0 + g.ly();
     if (!(bb.xmax > X0 && bb.xmin < X1 && bb.ymax > Y0 && bb.ymin < Y1))
-      s.fail(sh.kind == "tabulated" ? "file" : "center",
+      s.fail(sh.kind == ShapeKind::Tabulated ? "file" : "center",
              "the solid lies outside the domain: its bounding box [" + fmt_num(bb.xmin) + ", " + fmt_num(bb.xmax) +
                  "] x [" + fmt_num(bb.ymin) + ", " + fmt_num(bb.ymax) + "] does not intersect the domain [" +
                  fmt_num(X0) + ", " + fmt_num(X1) + "] x [" + fmt_num(Y0) + ", " + fmt_num(Y1) + "]");
@@ -918,8 +934,8 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
     s.require(sp.viscosity >= 0, "viscosity", "must be >= 0, got " + fmt_num(sp.viscosity));
 
     // ---- initial velocity
-    sp.velocity = s.choice("velocity", {"rigid", "fluid"}, std::string("rigid"));
-    if (sp.velocity == "fluid") {
+    sp.velocity = s.option("velocity", sp.velocity);
+    if (sp.velocity == SolidVelocity::Fluid) {
       for (const char* k : {"u", "v", "omega"})
         if (s.has(k)) s.fail(k, "only used with velocity = \"rigid\" (velocity is \"fluid\": the solid keeps the fluid's velocity)");
     } else {

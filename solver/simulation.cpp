@@ -74,30 +74,28 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
 
 namespace {
 
-/// The initial (or, for flow = "prescribed", the imposed) velocity at (x, y, t).
+/// The initial (or, for FlowMode::Prescribed, the imposed) velocity at (x, y, t).
 struct VelocityFunction {
   const InitialVelocity& in;
   const Grid& g;
   Expression eu, ev;
   double k;
   VelocityFunction(const InitialVelocity& init, const Grid& grid) : in(init), g(grid) {
-    if (in.kind == "expression") {
+    if (in.kind == InitialKind::Expression) {
       eu = Expression(in.u_expr);
       ev = Expression(in.v_expr);
-    } else if (in.kind != "zero" && in.kind != "uniform" && in.kind != "taylor_green") {
-      throw std::invalid_argument("unknown initial velocity kind '" + in.kind + "'");
     }
     k = in.wavenumber > 0.0 ? in.wavenumber : 2.0 * M_PI / g.lx();
   }
   void operator()(double x, double y, double t, double& u, double& v) const {
     u = v = 0.0;
-    if (in.kind == "uniform") {
+    if (in.kind == InitialKind::Uniform) {
       u = in.u; v = in.v;
-    } else if (in.kind == "taylor_green") {
+    } else if (in.kind == InitialKind::TaylorGreen) {
       const double X = k * (x - g.x0), Y = k * (y - g.y0);
       u = in.amplitude * std::sin(X) * std::cos(Y);
       v = -in.amplitude * std::cos(X) * std::sin(Y);
-    } else if (in.kind == "expression") {
+    } else if (in.kind == InitialKind::Expression) {
       u = eu.eval(x, y, t);
       v = ev.eval(x, y, t);
     }
@@ -160,7 +158,7 @@ void Simulation::solid_force() {
   sxy_.fill(0.0);
   syy_.fill(0.0);
   for (const auto& s : solids_) elastic_energy_ += s->add_stress(sxx_, sxy_, syy_, fx_, fy_);
-  if (cfg_.solid_opt.conservative && cfg_.solid_opt.stress_discretisation == "cell") {
+  if (cfg_.solid_opt.conservative && cfg_.solid_opt.stress_form == StressForm::Cell) {
     for (Field* f : {&sxx_, &sxy_, &syy_}) fill_scalar_ghosts(*f, cfg_.bc);
     add_stress_divergence(sxx_.view(), sxy_.view(), syy_.view(), fx_.view(), fy_.view(), g.nx,
                           g.ny, g.dx);
@@ -190,11 +188,11 @@ void Simulation::initialise() {
   p_.fill(0.0);
   dp_.fill(0.0);
 
-  if (cfg_.flow == "prescribed") {
+  if (cfg_.flow == FlowMode::Prescribed) {
     blend_material_fields();
     impose_prescribed_velocity(t_);
     prescribed_depends_on_time_ =
-        cfg_.init.kind == "expression" &&
+        cfg_.init.kind == InitialKind::Expression &&
         (Expression(cfg_.init.u_expr).uses_time() || Expression(cfg_.init.v_expr).uses_time());
     return;
   }
@@ -341,10 +339,9 @@ double Simulation::step(double dt) {
   const Grid& g = cfg_.grid;
   const int nx = g.nx, ny = g.ny;
   if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
-  const FluxScheme scheme =
-      cfg_.advection == "superbee" ? FluxScheme::Superbee : FluxScheme::Central;
+  const FluxScheme scheme = cfg_.advection;
 
-  if (cfg_.flow == "prescribed") {  // kinematics only: move the solids in the imposed flow
+  if (cfg_.flow == FlowMode::Prescribed) {  // kinematics only: move the solids in the imposed flow
     update_solids(dt);
     blend_material_fields();
     t_ += dt;
