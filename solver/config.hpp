@@ -1,6 +1,8 @@
 #pragma once
 // Everything a scene file says, after validation. solver/scene.cpp fills it from TOML;
-// the time loop (solver/simulation.cpp) only reads it.
+// the time loop (solver/simulation.cpp) only reads it. The member initialisers below are
+// the defaults of the scene keys: the key table (solver/scene_keys.cpp) reads them from a
+// default-constructed Config, so the loader and scenes/README.md use these values.
 #include <array>
 #include <string>
 #include <vector>

@@ -2,6 +2,7 @@
 //
 //   refmap run SCENE.toml [--out DIR] [--threads N] [--set key=value ...] [--quiet]
 //              [--timing-warmup N]
+//   refmap keys [--markdown]      (the scene-key reference, from solver/scene_keys.cpp)
 //   refmap --help | refmap run --help | refmap --version
 //
 // Exit codes: 0 success, 1 unexpected error, 2 bad command line or scene file (nothing is
@@ -26,6 +27,7 @@
 #include "solver/config.hpp"
 #include "solver/option_names.hpp"
 #include "solver/scene.hpp"
+#include "solver/scene_keys.hpp"
 #include "solver/simulation.hpp"
 
 #ifndef REFMAP_VERSION
@@ -230,6 +232,12 @@ int main(int argc, char** argv) {
       ->type_name("N");
   run->add_flag("-q,--quiet", quiet, "no progress display and no summary (errors are still printed)");
 
+  bool markdown = false;
+  CLI::App* keys = app.add_subcommand("keys", "print the reference of the scene-file keys");
+  keys->add_flag("--markdown", markdown,
+                 "print the markdown tables of scenes/README.md (the block between <!-- keys:begin --> and "
+                 "<!-- keys:end -->)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -239,6 +247,10 @@ int main(int argc, char** argv) {
 
   try {
     if (run->parsed()) return cmd_run(scene, out, threads, threads_opt->count() > 0, sets, quiet, warmup);
+    if (keys->parsed()) {
+      std::cout << (markdown ? refmap::scene_keys_markdown() : refmap::scene_keys_text());
+      return 0;
+    }
     std::cerr << app.help();
     return kExitUsage;
   } catch (const std::exception& e) {

@@ -11,6 +11,14 @@ std::span<const OptionName<E>> span_of(const OptionName<E> (&a)[N]) {
 }
 }  // namespace
 
+std::span<const OptionName<BcType>> option_names(BcType) {
+  static const OptionName<BcType> n[] = {{BcType::NoSlip, "no_slip"},
+                                         {BcType::FreeSlip, "free_slip"},
+                                         {BcType::Periodic, "periodic"},
+                                         {BcType::MovingWall, "moving_wall"}};
+  return span_of(n);
+}
+
 std::span<const OptionName<FlowMode>> option_names(FlowMode) {
   static const OptionName<FlowMode> n[] = {{FlowMode::Solve, "solve"}, {FlowMode::Prescribed, "prescribed"}};
   return span_of(n);
@@ -41,7 +49,7 @@ std::span<const OptionName<ExtrapolationMethod>> option_names(ExtrapolationMetho
 }
 
 std::span<const OptionName<StressForm>> option_names(StressForm) {
-  static const OptionName<StressForm> n[] = {{StressForm::Face, "face"}, {StressForm::Cell, "cell"}};
+  static const OptionName<StressForm> n[] = {{StressForm::Cell, "cell"}, {StressForm::Face, "face"}};
   return span_of(n);
 }
 

@@ -27,6 +27,7 @@ struct OptionName {
 };
 
 // The name lists (tag dispatch on a value of the enum); defined in option_names.cpp.
+std::span<const OptionName<BcType>> option_names(BcType);
 std::span<const OptionName<FlowMode>> option_names(FlowMode);
 std::span<const OptionName<FluxScheme>> option_names(FluxScheme);
 std::span<const OptionName<InitialKind>> option_names(InitialKind);
