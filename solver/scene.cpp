@@ -221,7 +221,7 @@ class Table {
     for (const auto& [k, v] : t_) {
       const std::string key(k.str());
       bool ok = false;
-      for (const auto& a : names) ok = ok || a == key;  // (key names, not option values)
+      for (const auto& a : names) ok = ok || a == key;
       if (ok) continue;
       if (!worst || pos(&k) < pos(worst_k)) { worst = &v; worst_k = &k; worst_key = key; }
     }
@@ -240,14 +240,20 @@ class Table {
 
   const KeyDef& entry(std::string_view key) const { return scene_key(schema_, std::string(key)); }
 
-  double number(std::string_view key) const { return checked(key, read_number(key, default_of<double>(key))); }
+  double number(std::string_view key) const {
+    const double v = read_number(key, default_of<double>(key));
+    checked(key, v, fmt_num(v));
+    return v;
+  }
   /// A number whose requiredness depends on other keys ([[solid]] mu_s with flow = "solve").
   double number(std::string_view key, bool required) const {
-    return checked(key, read_number(key, required ? std::nullopt : default_of<double>(key)));
+    const double v = read_number(key, required ? std::nullopt : default_of<double>(key));
+    checked(key, v, fmt_num(v));
+    return v;
   }
   long integer(std::string_view key) const {
     const long v = read_integer(key, default_of<long>(key));
-    (void)checked(key, double(v));
+    checked(key, double(v), std::to_string(v));
     return v;
   }
   bool boolean(std::string_view key) const { return read_boolean(key, default_of<bool>(key)); }
@@ -275,8 +281,8 @@ class Table {
                   ")");
   }
 
-  /// Fails if `key` is present although its entry's selector has another value
-  /// (initial.u with velocity = "zero"); returns the offending key or nullptr.
+  /// The first key present although it belongs to another value of its selector
+  /// (initial.u with velocity = "zero"), in table order; nullopt if there is none.
   std::optional<std::string> misplaced(const std::string& selector, const std::string& value) const {
     for (const auto& k : scene_keys()) {
       if (k.table != schema_ || k.selector != selector || !has(k.name)) continue;
@@ -301,14 +307,12 @@ class Table {
     return std::nullopt;
   }
   /// The entry's range check: "must be > 0 (note), got -1".
-  double checked(std::string_view key, double v) const {
+  void checked(std::string_view key, double v, const std::string& shown) const {
     const KeyRange& r = entry(key).range;
     if ((r.lo || r.hi) && !r.contains(v))
-      fail(key, "must be " + r.phrase() + (r.note.empty() ? "" : " (" + r.note + ")") + ", got " + fmt_num(v));
-    return v;
+      fail(key, "must be " + r.phrase() + (r.note.empty() ? "" : " (" + r.note + ")") + ", got " + shown);
   }
 
- public:
   // ---- raw getters: `def` = nullopt means required.
 
   double read_number(std::string_view key, std::optional<double> def) const {
@@ -379,6 +383,7 @@ class Table {
     return out;
   }
 
+ public:
   /// A sub-table; nullptr if absent and not required.
   const toml::table* table(std::string_view key, bool required) const {
     const toml::node* n = node(key);
