@@ -59,11 +59,13 @@
 
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "bench/bench_counters.hpp"
 #include "kernels/multigrid.hpp"
 #include "solver/poisson.hpp"
+#include "solver/option_names.hpp"
 #include "solver/poisson_multigrid.hpp"
 #include "tests/fixtures/poisson_problem.hpp"
 
@@ -219,11 +221,14 @@ SolveCache& solve_case(const std::string& method, int n, double ratio) {
     PoissonOptions o;
     o.tol = 1e-8;
     o.max_iter = 100000;
-    if (method == "V" || method == "F") {
-      o.method = "multigrid";
-      o.cycle = method;
+    // "V" / "F": multigrid with that cycle; else a method name (solver/option_names.hpp)
+    if (const auto cycle = parse_option<MgCycle>(method)) {
+      o.method = PoissonMethod::Multigrid;
+      o.cycle = *cycle;
+    } else if (const auto m = parse_option<PoissonMethod>(method)) {
+      o.method = *m;
     } else {
-      o.method = method;
+      throw std::invalid_argument("bench_poisson: unknown method " + method);
     }
     c.solver.reset();
     c.solver = make_poisson_solver(o);

@@ -65,8 +65,9 @@ void add_stress_divergence(CView sxx, CView sxy, CView syy, View fx, View fy, in
 
 namespace refmap {
 
-/// Compact face-based divergence of the neo-Hookean stress of one solid (the default
-/// discretisation). On every face the gradient of xi is taken with the compact normal
+/// Compact face-based divergence of the neo-Hookean stress of one solid (StressForm::Face,
+/// `solids.stress_discretisation = "face"`; the default is StressForm::Cell, the paper's
+/// cell-centred stress divided by add_stress_divergence above). On every face the gradient of xi is taken with the compact normal
 /// difference and the average of the two cells' central tangential differences (as the
 /// viscous stress in kernels/viscous.cpp), b and sigma_s = 2 mu_s (b - I) are evaluated
 /// there, and f = div sigma by face differences. Unlike the divergence of the cell-centred

@@ -1,11 +1,15 @@
 #pragma once
 // Everything a scene file says, after validation. solver/scene.cpp fills it from TOML;
-// the time loop (solver/simulation.cpp) only reads it.
+// the time loop (solver/simulation.cpp) only reads it. The member initialisers below are
+// the defaults of the scene keys: the key table (solver/scene_keys.cpp) reads them from a
+// default-constructed Config, so the loader and scenes/README.md use these values.
 #include <array>
 #include <string>
 #include <vector>
 
 #include "kernels/boundary_kind.hpp"
+#include "kernels/advection.hpp"
+#include "kernels/reference_map.hpp"
 #include "solver/grid.hpp"
 #include "solver/poisson.hpp"
 #include "solver/shape.hpp"
@@ -13,6 +17,20 @@
 namespace refmap {
 
 enum class BcType { NoSlip, MovingWall, FreeSlip, Periodic };
+
+// Physics options are enums from the moment the scene is loaded; their scene-file names
+// live in one place, solver/option_names.hpp (to_string / parse_option).
+
+/// Config::flow: solve Navier-Stokes, or impose the initial velocity field at every step.
+enum class FlowMode { Solve, Prescribed };
+/// InitialVelocity::kind.
+enum class InitialKind { Zero, Uniform, TaylorGreen, Expression };
+/// SolidSpec::velocity: initial velocity inside a solid.
+enum class SolidVelocity { Rigid, Fluid };
+/// SolidsOptions::extrapolation: Algorithm 2 (least squares) or the PDE baseline.
+enum class ExtrapolationMethod { Lsq, Pde };
+/// SolidsOptions::stress_form: discretisation of the solid stress divergence.
+enum class StressForm { Cell, Face };
 
 /// Boundary condition of one side. `velocity` is the tangential wall speed of a moving
 /// wall (u on bottom/top, v on left/right); the normal velocity at a wall is always 0.
@@ -36,7 +54,7 @@ struct ProbeSpec {
 };
 
 struct InitialVelocity {
-  std::string kind = "zero";  ///< "zero", "uniform", "taylor_green", "expression"
+  InitialKind kind = InitialKind::Zero;
   double u = 0.0, v = 0.0;    ///< uniform velocity
   double amplitude = 1.0;     ///< Taylor-Green: u = A sin(k(x-x0)) cos(k(y-y0)), v = -A cos sin
   double wavenumber = 0.0;    ///< k; 0 means 2 pi / lx
@@ -50,14 +68,15 @@ struct SolidSpec {
   double mu_s = 0.0;          ///< the paper's mu^s: sigma = 2 mu_s b, shear modulus G = 2 mu_s
   double density = 1.0;       ///< rho_s
   double viscosity = 0.0;     ///< Kelvin-Voigt solid viscosity (0: no viscous stress in the solid)
-  std::string velocity = "rigid";  ///< "rigid": u = (u, v) + omega x (x - centre); "fluid": keep the fluid's
+  /// Rigid: u = (u, v) + omega x (x - centre); Fluid: keep the fluid's
+  SolidVelocity velocity = SolidVelocity::Rigid;
   double u = 0.0, v = 0.0, omega = 0.0;
 };
 
 /// Options shared by all solids ([solids] table).
 struct SolidsOptions {
-  std::string extrapolation = "lsq";  ///< "lsq" (Algorithm 2) or "pde" (Aslam 2004 baseline)
-  /// "lsq": radius of the plane fit, in cells; the known cells with offsets di^2 + dj^2 <=
+  ExtrapolationMethod extrapolation = ExtrapolationMethod::Lsq;  ///< Algorithm 2, or the Aslam 2004 PDE baseline
+  /// Lsq: radius of the plane fit, in cells; the known cells with offsets di^2 + dj^2 <=
   /// floor(lsq_radius^2) enter it. Default 2 sqrt(2) (a 5 x 5 block), half the paper's
   /// 4 sqrt(2): with the paper's radius a stiff solid translating through an inviscid
   /// fluid gains energy without bound and impacts gain energy (README, Method notes; why
@@ -66,15 +85,15 @@ struct SolidsOptions {
   double band = 6.0;        ///< w_E, width of the extrapolated band, in cells
   double transition = 3.0;  ///< w_T, half-width of the smoothed Heaviside (eq. 3.5), in cells
   bool conservative = true; ///< divergence of the blended stress (true) or blend of divergences
-  /// "cell" (default, the paper's discretisation): divergence of the cell-centred stress of
-  /// eqs. (2.9), (3.1); "face": compact face-based stress (couples the odd-even mode that
+  /// Cell (default, the paper's discretisation): divergence of the cell-centred stress of
+  /// eqs. (2.9), (3.1); Face: compact face-based stress (couples the odd-even mode that
   /// the 2 dx-wide cell form leaves undamped in an inviscid solid, but was seen to gain
   /// energy in the disc-in-Taylor-Green case; see kernels/solid_stress.hpp)
-  std::string stress_discretisation = "cell";
-  /// face values of xi in its advection (eq. 3.3): "central" (the paper's), "vanleer" or
-  /// "superbee" (limited upwind: damp grid-scale xi oscillations where the solid moves; all
+  StressForm stress_form = StressForm::Cell;
+  /// face values of xi in its advection (eq. 3.3): Central (the paper's), VanLeer or
+  /// Superbee (limited upwind: damp grid-scale xi oscillations where the solid moves; all
   /// three exact for an affine xi; see README, Method notes)
-  std::string xi_advection = "vanleer";
+  XiFlux xi_advection = XiFlux::VanLeer;
   double solid_cfl = 0.5;   ///< P of section 4: dt <= P dx / sqrt(2 mu_s / rho_s)
   bool reinitialise = true; ///< fast-marching reinitialisation of phi0(xi)
   double pde_tol = 1e-8;    ///< PDE baseline: stop when max |change| per iteration < tol * (largest known |xi|)
@@ -83,7 +102,7 @@ struct SolidsOptions {
 
 /// Solid-solid and solid-wall contact ([contact] table; see solver/contact.hpp).
 struct ContactOptions {
-  bool enabled = true;         ///< repulsion between solids and from walls (flow = "solve" only)
+  bool enabled = true;         ///< repulsion between solids and from walls (FlowMode::Solve only)
   bool walls = true;           ///< also from the non-periodic sides
   double range = 2.5;          ///< d_c in cells: the force acts once a gap is below d_c
   double stiffness = 20.0;     ///< contact pressure at zero gap, in units of rho_max U^2
@@ -111,7 +130,7 @@ struct Config {
   double steady_tol = 0.0;   ///< > 0: stop when max|u^{n+1}-u^n|/dt < steady_tol
 
   // numerics
-  std::string advection = "central";  ///< "central" or "superbee"
+  FluxScheme advection = FluxScheme::Central;  ///< momentum fluxes of eq. (5.1)
   PoissonOptions poisson;
 
   // output
@@ -125,10 +144,10 @@ struct Config {
   std::vector<SolidSpec> solids;
   SolidsOptions solid_opt;
   ContactOptions contact;
-  /// "solve" (Navier-Stokes) or "prescribed": the initial velocity field (an expression,
+  /// Solve (Navier-Stokes) or Prescribed: the initial velocity field (an expression,
   /// possibly of t) is imposed at every step and no flow is solved (kinematic tests such
   /// as the Zalesak disk).
-  std::string flow = "solve";
+  FlowMode flow = FlowMode::Solve;
 };
 
 }  // namespace refmap

@@ -35,7 +35,7 @@ Contact::Contact(const Config& cfg, double velocity_scale) : g_(cfg.grid) {
       case FaceKind::Periodic: wall_[s] = false; break;
     }
   }
-  force_ = o.enabled && cfg.flow == "solve";
+  force_ = o.enabled && cfg.flow == FlowMode::Solve;
   d_ = o.range * g_.dx;
   h_ = 2.0 * g_.dx;
   double rho_max = cfg.rho_f;

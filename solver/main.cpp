@@ -2,6 +2,7 @@
 //
 //   refmap run SCENE.toml [--out DIR] [--threads N] [--set key=value ...] [--quiet]
 //              [--timing-warmup N]
+//   refmap keys [--markdown]      (the scene-key reference, from solver/scene_keys.cpp)
 //   refmap --help | refmap run --help | refmap --version
 //
 // Exit codes: 0 success, 1 unexpected error, 2 bad command line or scene file (nothing is
@@ -25,7 +26,9 @@
 
 #include "solver/config.hpp"
 #include "solver/run.hpp"
+#include "solver/option_names.hpp"
 #include "solver/scene.hpp"
+#include "solver/scene_keys.hpp"
 #include "solver/simulation.hpp"
 
 #ifndef REFMAP_VERSION
@@ -185,7 +188,7 @@ int cmd_run(const std::string& scene, std::string out, int threads, bool threads
       std::snprintf(line, sizeof line,
                     "solid %-15s %s extrapolation: %ld calls, %ld cells filled, %ld fallbacks%s, "
                     "%ld window moves\n",
-                    solid->spec().name.c_str(), sim.config().solid_opt.extrapolation.c_str(), c.calls,
+                    solid->spec().name.c_str(), refmap::to_string(sim.config().solid_opt.extrapolation), c.calls,
                     c.cells_filled, c.fallbacks,
                     c.iterations ? (", " + std::to_string(c.iterations) + " PDE iterations").c_str() : "",
                     solid->rewindows());
@@ -230,6 +233,12 @@ int main(int argc, char** argv) {
       ->type_name("N");
   run->add_flag("-q,--quiet", quiet, "no progress display and no summary (errors are still printed)");
 
+  bool markdown = false;
+  CLI::App* keys = app.add_subcommand("keys", "print the reference of the scene-file keys");
+  keys->add_flag("--markdown", markdown,
+                 "print the markdown tables of scenes/README.md (the block between <!-- keys:begin --> and "
+                 "<!-- keys:end -->)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -239,6 +248,10 @@ int main(int argc, char** argv) {
 
   try {
     if (run->parsed()) return cmd_run(scene, out, threads, threads_opt->count() > 0, sets, quiet, warmup);
+    if (keys->parsed()) {
+      std::cout << (markdown ? refmap::scene_keys_markdown() : refmap::scene_keys_text());
+      return 0;
+    }
     std::cerr << app.help();
     return kExitUsage;
   } catch (const std::exception& e) {

@@ -27,10 +27,16 @@ struct PoissonOperator {
   const Field* beta_y = nullptr;  ///< nx x (ny+1)
 };
 
+/// Pressure solver: geometric multigrid, plain CG, or multigrid-preconditioned CG.
+enum class PoissonMethod { Multigrid, Cg, Mgpcg };
+enum class MgCycle { V, F };
+/// Red-black Gauss-Seidel (over-relaxed by rbgs_omega) or weighted Jacobi.
+enum class MgSmoother { Rbgs, Jacobi };
+
 struct PoissonOptions {
-  std::string method = "multigrid";  ///< "multigrid", "cg" or "mgpcg"
-  std::string cycle = "V";           ///< "V" or "F"
-  std::string smoother = "rbgs";     ///< "rbgs" (red-black Gauss-Seidel) or "jacobi" (weighted)
+  PoissonMethod method = PoissonMethod::Multigrid;
+  MgCycle cycle = MgCycle::V;
+  MgSmoother smoother = MgSmoother::Rbgs;
   int pre_smooth = 2, post_smooth = 2;
   double tol = 1e-10;                ///< relative residual ||r||_2 / ||rhs||_2
   int max_iter = 200;
@@ -58,7 +64,7 @@ class PoissonSolver {
   virtual std::string name() const = 0;
 };
 
-/// Factory: throws std::invalid_argument for an unknown method/cycle/smoother.
+/// Factory: throws std::invalid_argument for out-of-range numeric options.
 std::unique_ptr<PoissonSolver> make_poisson_solver(const PoissonOptions& opt);
 
 }  // namespace refmap

@@ -1,6 +1,8 @@
 // Jacobi-preconditioned CG and multigrid-preconditioned CG; see poisson_cg.hpp.
 #include "solver/poisson_cg.hpp"
 
+#include "solver/option_names.hpp"
+
 #include <omp.h>
 
 #include <cmath>
@@ -92,7 +94,7 @@ SolveStats CGSolver::solve(const Field& rhs, Field& x) {
 MGPCGSolver::MGPCGSolver(const PoissonOptions& opt) : opt_(opt) {}
 
 std::string MGPCGSolver::name() const {
-  return "mgpcg(V-cycle, " + opt_.smoother + " " + std::to_string(opt_.pre_smooth) + "/" +
+  return std::string("mgpcg(V-cycle, ") + to_string(opt_.smoother) + " " + std::to_string(opt_.pre_smooth) + "/" +
          std::to_string(opt_.post_smooth) + ")";
 }
 

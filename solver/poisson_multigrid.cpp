@@ -1,6 +1,8 @@
 // Geometric multigrid hierarchy and the "multigrid" Poisson solver; see poisson_multigrid.hpp.
 #include "solver/poisson_multigrid.hpp"
 
+#include "solver/option_names.hpp"
+
 #include <omp.h>
 
 #include <Eigen/Sparse>
@@ -193,13 +195,10 @@ void MultigridHierarchy::update_threads() {
 void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& opt,
                                bool symmetric) {
   validate_poisson_operator(op);
-  if (opt.smoother != "rbgs" && opt.smoother != "jacobi")
-    throw std::invalid_argument("multigrid: unknown smoother '" + opt.smoother +
-                                "' (expected \"rbgs\" or \"jacobi\")");
   if (opt.pre_smooth < 0 || opt.post_smooth < 0 || opt.pre_smooth + opt.post_smooth < 1)
     throw std::invalid_argument("multigrid: pre_smooth/post_smooth must be >= 0 and not both 0");
   if (opt.coarse_cells < 1) throw std::invalid_argument("multigrid: coarse_cells must be >= 1");
-  jacobi_ = opt.smoother == "jacobi";
+  jacobi_ = opt.smoother == MgSmoother::Jacobi;
   pre_ = opt.pre_smooth;
   post_ = opt.post_smooth;
   omega_ = opt.jacobi_omega;
@@ -503,10 +502,7 @@ void remove_mean(const mg::Stencil& s, View x) {
 }  // namespace detail
 
 // ------------------------------------------------------------------------------------------
-MultigridSolver::MultigridSolver(const PoissonOptions& opt) : opt_(opt) {
-  if (opt.cycle != "V" && opt.cycle != "F")
-    throw std::invalid_argument("multigrid: unknown cycle '" + opt.cycle + "' (expected \"V\" or \"F\")");
-}
+MultigridSolver::MultigridSolver(const PoissonOptions& opt) : opt_(opt) {}
 
 void MultigridSolver::setup(const PoissonOperator& op) {
   mg_.setup(op, opt_);
@@ -516,7 +512,7 @@ void MultigridSolver::setup(const PoissonOperator& op) {
 }
 
 std::string MultigridSolver::name() const {
-  return "multigrid(" + opt_.cycle + "-cycle, " + opt_.smoother + " " +
+  return std::string("multigrid(") + to_string(opt_.cycle) + "-cycle, " + to_string(opt_.smoother) + " " +
          std::to_string(opt_.pre_smooth) + "/" + std::to_string(opt_.post_smooth) + ")";
 }
 
@@ -530,7 +526,7 @@ SolveStats MultigridSolver::solve(const Field& rhs, Field& x) {
   if (!detail::start_solve(s, bnorm, xv, opt_.record_history, st)) return st;
   double rel = std::sqrt(mg::residual(s, xv, f0_.cview(), View{})) / bnorm;
   if (opt_.record_history) st.history.push_back(rel);
-  const bool f_cycle = opt_.cycle == "F";
+  const bool f_cycle = opt_.cycle == MgCycle::F;
   int it = 0;
   while (rel > opt_.tol && it < opt_.max_iter) {
     double r2 = 0.0;  // ||f - L x||^2 after the cycle (fused into the last smoothing pass)

@@ -374,21 +374,20 @@ std::string Tabulated::describe() const {
 // ---------------------------------------------------------------------------- factory
 
 std::unique_ptr<Shape> make_shape(const ShapeParams& p) {
-  const std::string& k = p.kind;
-  if (k == "circle") return std::make_unique<Circle>(p.cx, p.cy, p.radius);
-  if (k == "ellipse") return std::make_unique<Ellipse>(p.cx, p.cy, p.a, p.b, p.angle);
-  if (k == "rounded_rectangle" || k == "rectangle")
-    return std::make_unique<RoundedRectangle>(p.cx, p.cy, p.half_width, p.half_height,
-                                              p.corner_radius, p.angle);
-  if (k == "zalesak" || k == "zalesak_disk" || k == "slotted_disk")
-    return std::make_unique<ZalesakDisk>(p.cx, p.cy, p.radius, p.slot_half_width, p.slot_top,
-                                         p.angle);
-  if (k == "tabulated") {
-    if (p.file.empty()) throw std::invalid_argument("tabulated shape: no file given");
-    return std::make_unique<Tabulated>(p.file);
+  switch (p.kind) {
+    case ShapeKind::Circle: return std::make_unique<Circle>(p.cx, p.cy, p.radius);
+    case ShapeKind::Ellipse: return std::make_unique<Ellipse>(p.cx, p.cy, p.a, p.b, p.angle);
+    case ShapeKind::RoundedRectangle:
+      return std::make_unique<RoundedRectangle>(p.cx, p.cy, p.half_width, p.half_height,
+                                                p.corner_radius, p.angle);
+    case ShapeKind::Zalesak:
+      return std::make_unique<ZalesakDisk>(p.cx, p.cy, p.radius, p.slot_half_width, p.slot_top,
+                                           p.angle);
+    case ShapeKind::Tabulated:
+      if (p.file.empty()) throw std::invalid_argument("tabulated shape: no file given");
+      return std::make_unique<Tabulated>(p.file);
   }
-  throw std::invalid_argument("unknown shape kind '" + k +
-                              "' (expected circle, ellipse, rounded_rectangle, zalesak, tabulated)");
+  throw std::invalid_argument("unknown shape kind " + std::to_string(int(p.kind)));
 }
 
 }  // namespace refmap

@@ -127,17 +127,18 @@ class Tabulated final : public Shape {
   BoundingBox bbox_;
 };
 
+/// Which shape ShapeParams describe (scene names and aliases: solver/option_names.cpp).
+enum class ShapeKind { Circle, Ellipse, RoundedRectangle, Zalesak, Tabulated };
+
 /// Parameters of any shape, as a scene file gives them. `kind` selects which fields
 /// are used:
-///   "circle":            cx, cy, radius
-///   "ellipse":           cx, cy, a, b, angle
-///   "rounded_rectangle": cx, cy, half_width, half_height, corner_radius, angle
-///                        (alias "rectangle")
-///   "zalesak":           cx, cy, radius, slot_half_width, slot_top, angle
-///                        (alias "zalesak_disk", "slotted_disk")
-///   "tabulated":         file
+///   Circle:           cx, cy, radius
+///   Ellipse:          cx, cy, a, b, angle
+///   RoundedRectangle: cx, cy, half_width, half_height, corner_radius, angle
+///   Zalesak:          cx, cy, radius, slot_half_width, slot_top, angle
+///   Tabulated:        file
 struct ShapeParams {
-  std::string kind = "circle";
+  ShapeKind kind = ShapeKind::Circle;
   double cx = 0.0, cy = 0.0;
   double radius = 0.0;
   double a = 0.0, b = 0.0;
@@ -147,7 +148,7 @@ struct ShapeParams {
   std::string file;
 };
 
-/// Builds the shape; throws std::invalid_argument on an unknown kind or invalid
+/// Builds the shape; throws std::invalid_argument on invalid
 /// parameters, std::runtime_error on an unreadable/malformed tabulated file.
 std::unique_ptr<Shape> make_shape(const ShapeParams& p);
 

@@ -62,30 +62,28 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
 
 namespace {
 
-/// The initial (or, for flow = "prescribed", the imposed) velocity at (x, y, t).
+/// The initial (or, for FlowMode::Prescribed, the imposed) velocity at (x, y, t).
 struct VelocityFunction {
   const InitialVelocity& in;
   const Grid& g;
   Expression eu, ev;
   double k;
   VelocityFunction(const InitialVelocity& init, const Grid& grid) : in(init), g(grid) {
-    if (in.kind == "expression") {
+    if (in.kind == InitialKind::Expression) {
       eu = Expression(in.u_expr);
       ev = Expression(in.v_expr);
-    } else if (in.kind != "zero" && in.kind != "uniform" && in.kind != "taylor_green") {
-      throw std::invalid_argument("unknown initial velocity kind '" + in.kind + "'");
     }
     k = in.wavenumber > 0.0 ? in.wavenumber : 2.0 * M_PI / g.lx();
   }
   void operator()(double x, double y, double t, double& u, double& v) const {
     u = v = 0.0;
-    if (in.kind == "uniform") {
+    if (in.kind == InitialKind::Uniform) {
       u = in.u; v = in.v;
-    } else if (in.kind == "taylor_green") {
+    } else if (in.kind == InitialKind::TaylorGreen) {
       const double X = k * (x - g.x0), Y = k * (y - g.y0);
       u = in.amplitude * std::sin(X) * std::cos(Y);
       v = -in.amplitude * std::cos(X) * std::sin(Y);
-    } else if (in.kind == "expression") {
+    } else if (in.kind == InitialKind::Expression) {
       u = eu.eval(x, y, t);
       v = ev.eval(x, y, t);
     }
@@ -148,7 +146,7 @@ void Simulation::solid_force() {
   sxy_.fill(0.0);
   syy_.fill(0.0);
   for (const auto& s : solids_) elastic_energy_ += s->add_stress(sxx_, sxy_, syy_, fx_, fy_);
-  if (cfg_.solid_opt.conservative && cfg_.solid_opt.stress_discretisation == "cell") {
+  if (cfg_.solid_opt.conservative && cfg_.solid_opt.stress_form == StressForm::Cell) {
     for (Field* f : {&sxx_, &sxy_, &syy_}) fill_scalar_ghosts(*f, cfg_.bc);
     add_stress_divergence(sxx_.view(), sxy_.view(), syy_.view(), fx_.view(), fy_.view(), g.nx,
                           g.ny, g.dx);
@@ -178,11 +176,11 @@ void Simulation::initialise() {
   p_.fill(0.0);
   dp_.fill(0.0);
 
-  if (cfg_.flow == "prescribed") {
+  if (cfg_.flow == FlowMode::Prescribed) {
     blend_material_fields();
     impose_prescribed_velocity(t_);
     prescribed_depends_on_time_ =
-        cfg_.init.kind == "expression" &&
+        cfg_.init.kind == InitialKind::Expression &&
         (Expression(cfg_.init.u_expr).uses_time() || Expression(cfg_.init.v_expr).uses_time());
     return;
   }
@@ -297,7 +295,7 @@ void Simulation::add_contact_face_accel() {
 
 double Simulation::step(double dt) {
   if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
-  if (cfg_.flow == "prescribed") return step_prescribed(dt);
+  if (cfg_.flow == FlowMode::Prescribed) return step_prescribed(dt);
   if (!solids_.empty()) {
     rho_old_ = rho_;
     move_solids(dt);                     // steps 1-3
@@ -340,8 +338,7 @@ void Simulation::advect_momentum(double dt) {
   ScopedPhase ph(timers_, "advection");
   const Grid& g = cfg_.grid;
   const int nx = g.nx, ny = g.ny;
-  const FluxScheme scheme =
-      cfg_.advection == "superbee" ? FluxScheme::Superbee : FluxScheme::Central;
+  const FluxScheme scheme = cfg_.advection;
   const double t = t_;
   parallel_rows(0, ny, [&](int j) {
     for (int i = 0; i < nx; ++i) {

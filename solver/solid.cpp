@@ -106,9 +106,7 @@ void Solid::advect(const Field& uf, const Field& vf, double dt) {
     for (Field* f : {&kx_, &ky_, &k2x_, &k2y_, &x0x_, &x0y_}) f->resize(ni, nj, Grid::ng);
   x0x_ = xi_x_;
   x0y_ = xi_y_;
-  const XiFlux flux = opt_.xi_advection == "superbee"  ? XiFlux::Superbee
-                      : opt_.xi_advection == "vanleer" ? XiFlux::VanLeer
-                                                       : XiFlux::Central;
+  const XiFlux flux = opt_.xi_advection;
   auto rhs = [&](Field& kx, Field& ky, bool re_extrapolate) {
     if (re_extrapolate) extrapolate();
     reference_map_rhs(xi_x_.view(), xi_y_.view(), phi_.view(), uf.view(), vf.view(), ni, nj, i0_,
@@ -155,7 +153,7 @@ void Solid::extrapolate() {
   const auto t0 = std::chrono::steady_clock::now();
   const int passes = int(std::ceil(opt_.band - 1e-9));
   ExtrapStats st;
-  if (opt_.extrapolation == "pde") {
+  if (opt_.extrapolation == ExtrapolationMethod::Pde) {
     PdeOptions po;
     po.band = band_;
     po.tol = opt_.pde_tol;
@@ -286,7 +284,7 @@ double Solid::add_stress(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& f
       lmax = std::max(lmax, m + d);
     }
   max_stretch2_ = lmax;
-  if (opt_.stress_discretisation == "face") {
+  if (opt_.stress_form == StressForm::Face) {
     add_face_stress_force(xi_x_.view(), xi_y_.view(), phi_.view(), ni_, nj_, grid_.dx, spec_.mu_s,
                           wt_, opt_.conservative, fx.view(), fy.view(), i0_, j0_);
   } else if (!opt_.conservative) {
@@ -297,15 +295,15 @@ double Solid::add_stress(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& f
     blend_stress_divergence(sxx_.view(), sxy_.view(), syy_.view(), phi_.view(), ni_, nj_,
                             grid_.dx, wt_, fx.view(), fy.view(), i0_, j0_);
   }
-  // "cell" + conservative: the caller takes the divergence of the global blended tensor
+  // Cell + conservative: the caller takes the divergence of the global blended tensor
   return energy;
 }
 
 void Solid::impose_initial_velocity(Field& u, Field& v) const {
-  if (spec_.velocity == "fluid") return;
+  if (spec_.velocity == SolidVelocity::Fluid) return;
   const BoundingBox bb = shape_->bbox();
-  const double cx = spec_.shape.kind == "tabulated" ? 0.5 * (bb.xmin + bb.xmax) : spec_.shape.cx;
-  const double cy = spec_.shape.kind == "tabulated" ? 0.5 * (bb.ymin + bb.ymax) : spec_.shape.cy;
+  const double cx = spec_.shape.kind == ShapeKind::Tabulated ? 0.5 * (bb.xmin + bb.xmax) : spec_.shape.cx;
+  const double cy = spec_.shape.kind == ShapeKind::Tabulated ? 0.5 * (bb.ymin + bb.ymax) : spec_.shape.cy;
   for (int j = 0; j < nj_; ++j)
     for (int i = 0; i < ni_; ++i) {
       const double ph = phi_(i, j);

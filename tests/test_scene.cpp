@@ -15,6 +15,15 @@ using refmap::BcType;
 using refmap::Config;
 using refmap::load_scene;
 using refmap::SceneError;
+using refmap::ExtrapolationMethod;
+using refmap::FlowMode;
+using refmap::FluxScheme;
+using refmap::InitialKind;
+using refmap::MgCycle;
+using refmap::MgSmoother;
+using refmap::PoissonMethod;
+using refmap::ShapeKind;
+using refmap::SolidVelocity;
 
 namespace {
 
@@ -108,7 +117,7 @@ TEST_F(SceneFiles, SceneMinimalDefaults) {
   EXPECT_FALSE(c.bc[refmap::Top].oscillating);
   EXPECT_EQ(c.bc[refmap::Top].speed(123.0), 1.0);
   EXPECT_EQ(c.bc[refmap::Left].speed(1.0), 0.0);
-  EXPECT_EQ(c.init.kind, "zero");
+  EXPECT_EQ(c.init.kind, InitialKind::Zero);
   EXPECT_EQ(c.gx, 0.0);
   EXPECT_EQ(c.gy, 0.0);
   EXPECT_EQ(c.t_start, 0.0);
@@ -118,10 +127,10 @@ TEST_F(SceneFiles, SceneMinimalDefaults) {
   EXPECT_EQ(c.dt_fixed, 0.0);
   EXPECT_EQ(c.max_steps, 0);
   EXPECT_EQ(c.steady_tol, 0.0);
-  EXPECT_EQ(c.advection, "central");
-  EXPECT_EQ(c.poisson.method, "multigrid");
-  EXPECT_EQ(c.poisson.cycle, "V");
-  EXPECT_EQ(c.poisson.smoother, "rbgs");
+  EXPECT_EQ(c.advection, FluxScheme::Central);
+  EXPECT_EQ(c.poisson.method, PoissonMethod::Multigrid);
+  EXPECT_EQ(c.poisson.cycle, MgCycle::V);
+  EXPECT_EQ(c.poisson.smoother, MgSmoother::Rbgs);
   EXPECT_EQ(c.output_interval, 0.0);
   EXPECT_TRUE(c.write_vtk);
   EXPECT_EQ(c.diagnostics_every, 1);
@@ -208,7 +217,7 @@ points = 2
   EXPECT_EQ(top.omega, 3.0);
   EXPECT_EQ(top.phase, 0.25);
   EXPECT_DOUBLE_EQ(top.speed(0.7), 0.5 * std::sin(3.0 * 0.7 + 0.25));
-  EXPECT_EQ(c.init.kind, "taylor_green");
+  EXPECT_EQ(c.init.kind, InitialKind::TaylorGreen);
   EXPECT_EQ(c.init.amplitude, 0.1);
   EXPECT_EQ(c.init.wavenumber, 0.0);
   EXPECT_EQ(c.gx, 0.0);
@@ -221,10 +230,10 @@ points = 2
   EXPECT_EQ(c.dt_max, 0.01);
   EXPECT_EQ(c.max_steps, 1000);
   EXPECT_EQ(c.steady_tol, 1e-8);
-  EXPECT_EQ(c.advection, "superbee");
-  EXPECT_EQ(c.poisson.method, "mgpcg");
-  EXPECT_EQ(c.poisson.cycle, "F");
-  EXPECT_EQ(c.poisson.smoother, "jacobi");
+  EXPECT_EQ(c.advection, FluxScheme::Superbee);
+  EXPECT_EQ(c.poisson.method, PoissonMethod::Mgpcg);
+  EXPECT_EQ(c.poisson.cycle, MgCycle::F);
+  EXPECT_EQ(c.poisson.smoother, MgSmoother::Jacobi);
   EXPECT_EQ(c.poisson.pre_smooth, 3);
   EXPECT_EQ(c.poisson.post_smooth, 1);
   EXPECT_EQ(c.poisson.tol, 1e-9);
@@ -248,12 +257,12 @@ points = 2
 
 TEST_F(SceneFiles, SceneInitialKinds) {
   Config c = load_scene(write(std::string(kBase) + "[initial]\nvelocity = \"uniform\"\nu = 2\nv = -0.5\n"));
-  EXPECT_EQ(c.init.kind, "uniform");
+  EXPECT_EQ(c.init.kind, InitialKind::Uniform);
   EXPECT_EQ(c.init.u, 2.0);
   EXPECT_EQ(c.init.v, -0.5);
   c = load_scene(write(std::string(kBase) +
                        "[initial]\nvelocity = \"expression\"\nu_expr = \"sin(2*pi*x)*cos(2*pi*y)\"\nv_expr = \"0\"\n"));
-  EXPECT_EQ(c.init.kind, "expression");
+  EXPECT_EQ(c.init.kind, InitialKind::Expression);
   EXPECT_EQ(c.init.u_expr, "sin(2*pi*x)*cos(2*pi*y)");
   EXPECT_EQ(c.init.v_expr, "0");
   // numbers are accepted as expressions (also from --set, where a bare 0 is an integer)
@@ -427,8 +436,8 @@ TEST_F(SceneFiles, SceneSetOverrides) {
   EXPECT_EQ(c.grid.nx, 32);
   EXPECT_DOUBLE_EQ(c.grid.dx, 1.0 / 32);
   EXPECT_DOUBLE_EQ(c.grid.ly(), 0.5);
-  EXPECT_EQ(c.advection, "superbee");
-  EXPECT_EQ(c.poisson.cycle, "F");
+  EXPECT_EQ(c.advection, FluxScheme::Superbee);
+  EXPECT_EQ(c.poisson.cycle, MgCycle::F);
   EXPECT_EQ(c.t_end, 2.0);
   EXPECT_FALSE(c.write_vtk);
   EXPECT_EQ(c.gy, -9.81);
@@ -539,8 +548,8 @@ density = 1.0
 
 TEST_F(SceneFiles, SceneSolidsFillConfig) {
   const Config c = load_scene(write(std::string(kBase) + kTwoSolids));
-  EXPECT_EQ(c.flow, "solve");
-  EXPECT_EQ(c.solid_opt.extrapolation, "pde");
+  EXPECT_EQ(c.flow, FlowMode::Solve);
+  EXPECT_EQ(c.solid_opt.extrapolation, ExtrapolationMethod::Pde);
   EXPECT_EQ(c.solid_opt.band, 8.0);
   EXPECT_EQ(c.solid_opt.transition, 2.5);
   EXPECT_FALSE(c.solid_opt.conservative);
@@ -552,7 +561,7 @@ TEST_F(SceneFiles, SceneSolidsFillConfig) {
 
   const refmap::SolidSpec& a = c.solids[0];
   EXPECT_EQ(a.name, "disc");
-  EXPECT_EQ(a.shape.kind, "circle");
+  EXPECT_EQ(a.shape.kind, ShapeKind::Circle);
   EXPECT_EQ(a.shape.cx, 0.25);
   EXPECT_EQ(a.shape.cy, 0.5);
   EXPECT_EQ(a.shape.radius, 0.1);
@@ -560,14 +569,14 @@ TEST_F(SceneFiles, SceneSolidsFillConfig) {
   EXPECT_EQ(a.mu_s, 0.5);
   EXPECT_EQ(a.density, 2.0);
   EXPECT_EQ(a.viscosity, 0.01);
-  EXPECT_EQ(a.velocity, "rigid");
+  EXPECT_EQ(a.velocity, SolidVelocity::Rigid);
   EXPECT_EQ(a.u, 1.0);
   EXPECT_EQ(a.v, -0.5);
   EXPECT_EQ(a.omega, 3.0);
 
   const refmap::SolidSpec& b = c.solids[1];
   EXPECT_EQ(b.name, "solid1");  // default name: solid<index>
-  EXPECT_EQ(b.shape.kind, "rounded_rectangle");
+  EXPECT_EQ(b.shape.kind, ShapeKind::RoundedRectangle);
   EXPECT_EQ(b.shape.cx, 0.7);
   EXPECT_EQ(b.shape.cy, 0.4);
   EXPECT_EQ(b.shape.half_width, 0.1);
@@ -577,16 +586,16 @@ TEST_F(SceneFiles, SceneSolidsFillConfig) {
   EXPECT_EQ(b.mu_s, 0.0);
   EXPECT_EQ(b.density, 1.0);
   EXPECT_EQ(b.viscosity, 0.0);
-  EXPECT_EQ(b.velocity, "fluid");
+  EXPECT_EQ(b.velocity, SolidVelocity::Fluid);
   EXPECT_EQ(b.u, 0.0);
   EXPECT_EQ(b.omega, 0.0);
 }
 
 TEST_F(SceneFiles, SceneSolidsDefaultsAndShapes) {
   Config c = load_scene(write(kBase));
-  EXPECT_EQ(c.flow, "solve");
+  EXPECT_EQ(c.flow, FlowMode::Solve);
   EXPECT_TRUE(c.solids.empty());
-  EXPECT_EQ(c.solid_opt.extrapolation, "lsq");
+  EXPECT_EQ(c.solid_opt.extrapolation, ExtrapolationMethod::Lsq);
   EXPECT_DOUBLE_EQ(c.solid_opt.lsq_radius * c.solid_opt.lsq_radius, 8.0);  // 2 sqrt(2): the 5 x 5 block
   EXPECT_EQ(c.solid_opt.band, 6.0);
   EXPECT_EQ(c.solid_opt.transition, 3.0);
@@ -599,18 +608,18 @@ TEST_F(SceneFiles, SceneSolidsDefaultsAndShapes) {
   c = load_scene(write(std::string(kBase) + kOneCircle));
   ASSERT_EQ(c.solids.size(), 1u);
   EXPECT_EQ(c.solids[0].name, "solid0");
-  EXPECT_EQ(c.solids[0].velocity, "rigid");
+  EXPECT_EQ(c.solids[0].velocity, SolidVelocity::Rigid);
 
   c = load_scene(write(std::string(kBase) + "[[solid]]\nshape = \"ellipse\"\ncenter = [0.5, 0.5]\nsemi_axes = [0.2, 0.1]\n"
                                             "angle = 0.5\nmu_s = 1\ndensity = 1\n"));
-  EXPECT_EQ(c.solids[0].shape.kind, "ellipse");
+  EXPECT_EQ(c.solids[0].shape.kind, ShapeKind::Ellipse);
   EXPECT_EQ(c.solids[0].shape.a, 0.2);
   EXPECT_EQ(c.solids[0].shape.b, 0.1);
   EXPECT_EQ(c.solids[0].shape.angle, 0.5);
 
   c = load_scene(write(std::string(kBase) + "[[solid]]\nshape = \"zalesak\"\ncenter = [0.5, 0.75]\nradius = 0.15\n"
                                             "slot_half_width = 0.025\nslot_top = 0.85\nmu_s = 1\ndensity = 1\n"));
-  EXPECT_EQ(c.solids[0].shape.kind, "zalesak");
+  EXPECT_EQ(c.solids[0].shape.kind, ShapeKind::Zalesak);
   EXPECT_EQ(c.solids[0].shape.radius, 0.15);
   EXPECT_EQ(c.solids[0].shape.slot_half_width, 0.025);
   EXPECT_EQ(c.solids[0].shape.slot_top, 0.85);
@@ -620,13 +629,13 @@ TEST_F(SceneFiles, SceneSolidsDefaultsAndShapes) {
   fs::create_directories(dir_ / "data");
   std::ofstream(dir_ / "data" / "blob.txt") << "# a 3 x 3 table\n3 3 0.25 0.25 0.25\n1 1 1\n1 -1 1\n1 1 1\n";
   c = load_scene(write(std::string(kBase) + "[[solid]]\nshape = \"tabulated\"\nfile = \"data/blob.txt\"\nmu_s = 1\ndensity = 1\n"));
-  EXPECT_EQ(c.solids[0].shape.kind, "tabulated");
+  EXPECT_EQ(c.solids[0].shape.kind, ShapeKind::Tabulated);
   EXPECT_EQ(fs::path(c.solids[0].shape.file), (dir_ / "data" / "blob.txt").lexically_normal());
 
   // prescribed flow: the solid's material is not needed
   c = load_scene(write(std::string(kBase) + "[solver]\nflow = \"prescribed\"\n" +
                        "[[solid]]\nshape = \"circle\"\ncenter = [0.5, 0.5]\nradius = 0.2\nvelocity = \"fluid\"\n"));
-  EXPECT_EQ(c.flow, "prescribed");
+  EXPECT_EQ(c.flow, FlowMode::Prescribed);
   EXPECT_EQ(c.solids[0].mu_s, 0.0);
   EXPECT_EQ(c.solids[0].density, 1.0);
 }
@@ -717,12 +726,12 @@ TEST_F(SceneFiles, SceneSolidErrorsMore) {
 TEST_F(SceneFiles, SceneSolidSetOverrides) {
   const std::string path = write(std::string(kBase) + kOneCircle);
   Config c = load_scene(path, {"solids.extrapolation=\"pde\""});
-  EXPECT_EQ(c.solid_opt.extrapolation, "pde");
+  EXPECT_EQ(c.solid_opt.extrapolation, ExtrapolationMethod::Pde);
   c = load_scene(path, {"solids.extrapolation=pde", "solid[0].mu_s=2", "solid.0.name=blob", "solver.flow=prescribed"});
-  EXPECT_EQ(c.solid_opt.extrapolation, "pde");
+  EXPECT_EQ(c.solid_opt.extrapolation, ExtrapolationMethod::Pde);
   EXPECT_EQ(c.solids[0].mu_s, 2.0);
   EXPECT_EQ(c.solids[0].name, "blob");
-  EXPECT_EQ(c.flow, "prescribed");
+  EXPECT_EQ(c.flow, FlowMode::Prescribed);
   std::string m = error_of(std::string(kBase) + kOneCircle, {"solids.extrapolation=foo"});
   EXPECT_HAS(m, "solids.extrapolation: unknown value \"foo\"");
   EXPECT_HAS(m, "(from --set)");
@@ -733,15 +742,15 @@ TEST_F(SceneFiles, SceneSolidSetOverrides) {
 // The shipped Zalesak scene loads (prescribed flow, no material for the solid).
 TEST_F(SceneFiles, SceneZalesakLoads) {
   const Config c = load_scene(std::string(REFMAP_SOURCE_DIR) + "/scenes/zalesak.toml");
-  EXPECT_EQ(c.flow, "prescribed");
+  EXPECT_EQ(c.flow, FlowMode::Prescribed);
   EXPECT_EQ(c.solid_opt.band, 5.0);
   ASSERT_EQ(c.solids.size(), 1u);
   EXPECT_EQ(c.solids[0].name, "slotted_disk");
-  EXPECT_EQ(c.solids[0].shape.kind, "zalesak");
-  EXPECT_EQ(c.solids[0].velocity, "fluid");
+  EXPECT_EQ(c.solids[0].shape.kind, ShapeKind::Zalesak);
+  EXPECT_EQ(c.solids[0].velocity, SolidVelocity::Fluid);
   EXPECT_EQ(load_scene(std::string(REFMAP_SOURCE_DIR) + "/scenes/zalesak.toml", {"solids.extrapolation=\"pde\""})
                 .solid_opt.extrapolation,
-            "pde");
+            ExtrapolationMethod::Pde);
 }
 
 // The solids example of scenes/README.md is a valid scene.
@@ -761,6 +770,6 @@ TEST_F(SceneFiles, SceneReadmeSolidsExampleLoads) {
   EXPECT_EQ(c.name, "solids_example");
   ASSERT_EQ(c.solids.size(), 2u);
   EXPECT_EQ(c.solids[0].name, "disc");
-  EXPECT_EQ(c.solids[1].shape.kind, "rounded_rectangle");
+  EXPECT_EQ(c.solids[1].shape.kind, ShapeKind::RoundedRectangle);
   EXPECT_EQ(c.solids[1].omega, 1.0);
 }

@@ -399,7 +399,7 @@ TEST(ShapeTabulated, SampledCircleFromFile) {
     o << table_text(41, 41, 0.0, 0.0, 0.025, [&](double x, double y) { return c.phi0(x, y); });
   }
   ShapeParams p;
-  p.kind = "tabulated";
+  p.kind = ShapeKind::Tabulated;
   p.file = path.string();
   const auto t = make_shape(p);
   // bilinear interpolation error of a distance function: O(dx^2 / R) away from the centre
@@ -460,33 +460,33 @@ TEST(ShapeTabulated, MalformedFilesGiveClearErrors) {
 
 TEST(ShapeFactory, BuildsEveryKind) {
   ShapeParams p;
-  p.kind = "circle";
+  p.kind = ShapeKind::Circle;
   p.cx = 0.5;
   p.cy = 0.5;
   p.radius = 0.2;
   EXPECT_NEAR(make_shape(p)->phi0(0.5, 0.5), -0.2, 1e-15);
-  p.kind = "ellipse";
+  p.kind = ShapeKind::Ellipse;
   p.a = 0.3;
   p.b = 0.1;
   EXPECT_NEAR(make_shape(p)->phi0(0.5, 0.5), -0.1, 1e-15);
-  p.kind = "rounded_rectangle";
+  p.kind = ShapeKind::RoundedRectangle;
   p.half_width = 0.3;
   p.half_height = 0.2;
   p.corner_radius = 0.05;
   EXPECT_NEAR(make_shape(p)->phi0(0.5, 0.5), -0.2, 1e-15);
-  p.kind = "zalesak";
+  p.kind = ShapeKind::Zalesak;
   p.cx = 0.5;
   p.cy = 0.75;
   p.radius = 0.15;
   p.slot_half_width = 0.025;
   p.slot_top = 0.85;
   EXPECT_NEAR(make_shape(p)->phi0(0.5, 0.75), 0.025, 1e-15);
-  p.kind = "dodecahedron";
+  p.kind = ShapeKind(99);  // not a kind: only reachable by a cast
   EXPECT_THROW(make_shape(p), std::invalid_argument);
-  p.kind = "circle";
+  p.kind = ShapeKind::Circle;
   p.radius = -1;
   EXPECT_THROW(make_shape(p), std::invalid_argument);
-  p.kind = "tabulated";
+  p.kind = ShapeKind::Tabulated;
   p.file = "";
   EXPECT_THROW(make_shape(p), std::invalid_argument);
   p.file = "/nonexistent/phi0.txt";
