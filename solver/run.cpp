@@ -70,12 +70,32 @@ class RunOutput {
     const Config& cfg = sim_.config();
     const Grid& g = sim_.grid();
     fs::create_directories(dir_);
+    remove_earlier_output();
     std::ostringstream head;
     head << "refmap diagnostics, scene " << cfg.name << ", grid " << g.nx << " x " << g.ny
          << ", dx " << g.dx;
     csv_ = std::make_unique<CsvWriter>((fs::path(dir_) / "diagnostics.csv").string(),
                                        diagnostic_columns(sim_), head.str());
-    pvd_ = std::make_unique<PvdSeries>((fs::path(dir_) / (cfg.name + ".pvd")).string());
+    if (cfg.write_vtk)  // no .pvd without frames
+      pvd_ = std::make_unique<PvdSeries>((fs::path(dir_) / (cfg.name + ".pvd")).string());
+  }
+
+  /// A directory used before holds the files of the earlier run; frames of that run
+  /// beside this one's would be read as one series. Only the names refmap writes are
+  /// removed (frames and their temporaries, .pvd series, the CSV outputs, checkpoints);
+  /// scene.toml is written by the caller before the run, anything else is left alone.
+  void remove_earlier_output() {
+    std::error_code ec;
+    std::vector<fs::path> stale;
+    for (const auto& e : fs::directory_iterator(dir_, ec)) {
+      const std::string f = e.path().filename().string();
+      const bool ours = (f.rfind("frame_", 0) == 0 && (e.path().extension() == ".vti" || f.ends_with(".vti.tmp"))) ||
+                        e.path().extension() == ".pvd" || f.ends_with(".pvd.tmp") ||
+                        (f.rfind("probe_", 0) == 0 && e.path().extension() == ".csv") || f == "diagnostics.csv" ||
+                        f == "events.csv" || f == "timings.csv" || f.rfind("checkpoint.bin", 0) == 0;
+      if (ours && e.is_regular_file(ec)) stale.push_back(e.path());
+    }
+    for (const auto& p : stale) fs::remove(p, ec);
   }
 
   bool enabled() const { return !dir_.empty(); }

@@ -23,7 +23,9 @@
 
 #include <toml++/toml.h>
 
+#include "solver/boundary.hpp"
 #include "solver/expression.hpp"
+#include "solver/memory_estimate.hpp"
 #include "solver/option_names.hpp"
 #include "solver/scene_keys.hpp"
 
@@ -919,6 +921,117 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
   }
 }
 
+// ---------------------------------------------------------------------------------------
+// the state at the start: everything the run would otherwise find only after the output
+// directory was made (exit 2 here, before anything is written)
+
+/// The node of solid k's key `key` (for the message position), or the solid's table.
+const toml::node* solid_node(const Table& top, std::size_t k, const char* key) {
+  const toml::array* arr = top.node("solid")->as_array();
+  const toml::table* t = arr->get(k)->as_table();
+  const toml::node* n = t->get(key);
+  return n ? n : t;
+}
+
+void check_start_state(const Ctx& ctx, const Table& top, const Config& cfg) {
+  const Grid& g = cfg.grid;
+  // 1. the initial (or imposed) velocity expressions must be finite wherever they are
+  //    evaluated: cell centres and face centres at the start time
+  if (cfg.init.kind == InitialKind::Expression) {
+    Table in(ctx, *top.table("initial", true), "initial", "initial");
+    for (const char* key : {"u_expr", "v_expr"}) {
+      const Expression e(std::string(key) == std::string("u_expr") ? cfg.init.u_expr : cfg.init.v_expr);
+      for (int j = 0; j <= g.ny; ++j)
+        for (int i = 0; i <= g.nx; ++i)
+          for (auto [x, y] : {std::pair{g.xc(std::min(i, g.nx - 1)), g.yc(std::min(j, g.ny - 1))},
+                              std::pair{g.xf(i), g.yc(std::min(j, g.ny - 1))},
+                              std::pair{g.xc(std::min(i, g.nx - 1)), g.yf(j)}}) {
+            const double v = e.eval(x, y, cfg.t_start);
+            if (!std::isfinite(v))
+              in.fail(key, "evaluates to " + fmt_num(v) + " at x = " + fmt_num(x) + ", y = " + fmt_num(y) +
+                               ", t = " + fmt_num(cfg.t_start) + " (it must be finite over the whole grid)");
+          }
+    }
+  }
+  if (cfg.solids.empty()) return;
+  // 2. the extrapolated band must fit in the grid
+  if (top.has("solids")) {
+    Table so(ctx, *top.table("solids", true), "solids", "solids");
+    so.require(cfg.solid_opt.band < std::min(g.nx, g.ny), "band",
+               "the band (" + fmt_num(cfg.solid_opt.band) + " cells) is wider than the grid (" +
+                   std::to_string(g.nx) + " x " + std::to_string(g.ny) + " cells)");
+  }
+  const Sides sides = face_sides(cfg.bc);
+  const double x1 = g.x0 + g.lx(), y1 = g.y0 + g.ly();
+  // the band and the margin a solid's window keeps (solver/solid.cpp) must stay off a
+  // periodic side the solid does not span
+  const double reach = (cfg.solid_opt.band + 3.0) * g.dx;
+  std::vector<BoundingBox> boxes;
+  std::vector<std::unique_ptr<Shape>> shapes;
+  for (std::size_t k = 0; k < cfg.solids.size(); ++k) {
+    const SolidSpec& sp = cfg.solids[k];
+    shapes.push_back(make_shape(sp.shape));
+    const BoundingBox bb = shapes.back()->bbox();
+    boxes.push_back(bb);
+    const char* where = sp.shape.kind == ShapeKind::Tabulated ? "file" : "center";
+    const std::string key = "solid[" + std::to_string(k) + "]." + where;
+    auto fail = [&](const std::string& what) {
+      ctx.fail(key, solid_node(top, k, where), "solid '" + sp.name + "' " + what);
+    };
+    // 3. inside the walls; 4. not across a periodic side it does not span
+    struct Axis { double lo, hi, d0, d1; Side s0, s1; const char* name; };
+    for (const Axis& a : {Axis{bb.xmin, bb.xmax, g.x0, x1, Left, Right, "x"},
+                          Axis{bb.ymin, bb.ymax, g.y0, y1, Bottom, Top, "y"}}) {
+      switch (sides[a.s0]) {
+        case FaceKind::Wall:
+          if (a.lo < a.d0 || a.hi > a.d1)
+            fail(std::string("does not fit inside the walls: it spans ") + a.name + " = [" + fmt_num(a.lo) + ", " +
+                 fmt_num(a.hi) + "], the domain [" + fmt_num(a.d0) + ", " + fmt_num(a.d1) + "]");
+          break;
+        case FaceKind::Periodic: {
+          const bool spans = a.hi - a.lo >= a.d1 - a.d0;
+          if (!spans && (a.lo - reach < a.d0 || a.hi + reach > a.d1))
+            fail(std::string("crosses or touches the periodic sides in ") + a.name + ": with its band it spans " +
+                 a.name + " = [" + fmt_num(a.lo - reach) + ", " + fmt_num(a.hi + reach) + "], the domain [" +
+                 fmt_num(a.d0) + ", " + fmt_num(a.d1) + "] (a solid may cross a periodic side only if it spans "
+                 "the whole period; move it inward or enlarge the domain)");
+          break;
+        }
+      }
+    }
+  }
+  // 5. no two solids overlap at the start (sampled at the cell centres)
+  for (std::size_t a = 0; a < shapes.size(); ++a)
+    for (std::size_t b = a + 1; b < shapes.size(); ++b) {
+      const BoundingBox &A = boxes[a], &B = boxes[b];
+      const double xa = std::max(A.xmin, B.xmin), xb = std::min(A.xmax, B.xmax);
+      const double ya = std::max(A.ymin, B.ymin), yb = std::min(A.ymax, B.ymax);
+      if (xa > xb || ya > yb) continue;
+      const int i0 = std::max(0, int(std::floor((xa - g.x0) / g.dx))), i1 = std::min(g.nx - 1, int(std::ceil((xb - g.x0) / g.dx)));
+      const int j0 = std::max(0, int(std::floor((ya - g.y0) / g.dx))), j1 = std::min(g.ny - 1, int(std::ceil((yb - g.y0) / g.dx)));
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i)
+          if (shapes[a]->phi0(g.xc(i), g.yc(j)) < 0.0 && shapes[b]->phi0(g.xc(i), g.yc(j)) < 0.0) {
+            const char* where = cfg.solids[b].shape.kind == ShapeKind::Tabulated ? "file" : "center";
+            ctx.fail("solid[" + std::to_string(b) + "]." + where, solid_node(top, b, where),
+                     "solid '" + cfg.solids[b].name + "' overlaps solid '" + cfg.solids[a].name + "' at the start (cell (" +
+                         std::to_string(i) + ", " + std::to_string(j) + "), x = " + fmt_num(g.xc(i)) + ", y = " +
+                         fmt_num(g.yc(j)) + ")");
+          }
+    }
+}
+
+/// 6. The memory the run will hold (solver/memory_estimate.hpp) against what the machine
+/// has free: a grid far too large stops here, naming the grid keys.
+void check_memory(const Ctx& ctx, const Table& top, const Config& cfg) {
+  const MemoryEstimate m = estimate_memory(cfg);
+  const std::size_t avail = available_memory_bytes();
+  if (avail == 0 || m.total() <= avail) return;
+  Table grid(ctx, *top.table("grid", true), "grid", "grid");
+  grid.fail("nx", "the scene needs about " + m.summary() + " of memory, this machine has " + format_bytes(avail) +
+                      " available (grid " + std::to_string(cfg.grid.nx) + " x " + std::to_string(cfg.grid.ny) + ")");
+}
+
 Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>& sets) {
   for (const auto& s : sets) apply_override(ctx, root, s);
 
@@ -948,6 +1061,8 @@ Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>&
   parse_solids_options(ctx, top, cfg);  // after parse_solver: the solids need cfg.flow
   parse_solids(ctx, top, cfg);
   parse_contact(ctx, top, cfg);  // after parse_solids_options: the range is checked against the band
+  check_start_state(ctx, top, cfg);
+  check_memory(ctx, top, cfg);
   return cfg;
 }
 

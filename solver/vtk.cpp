@@ -25,8 +25,12 @@ std::string fmt17(double v) {
   return buf;
 }
 
+/// Throws for a failed write of `path`; a temporary (".tmp") is removed first, so a full
+/// disk leaves no half frame behind (the previous complete file, if any, stays).
 [[noreturn]] void io_fail(const std::string& what, const std::string& path) {
-  throw std::runtime_error("cannot write " + path + ": " + what + (errno ? std::string(" (") + std::strerror(errno) + ")" : ""));
+  const int err = errno;
+  if (path.ends_with(".tmp")) std::remove(path.c_str());
+  throw std::runtime_error("cannot write " + path + ": " + what + (err ? std::string(" (") + std::strerror(err) + ")" : ""));
 }
 
 void check_field(const Field* f, const Grid& g, const std::string& name) {
