@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "kernels/constitutive.hpp"
 #include "solver/grid.hpp"
 #include "solver/poisson.hpp"
 #include "solver/shape.hpp"
@@ -48,6 +49,10 @@ struct SolidSpec {
   std::string name;
   ShapeParams shape;          ///< reference configuration, phi0 of eq. (3.2)
   double mu_s = 0.0;          ///< the paper's mu^s: sigma = 2 mu_s b, shear modulus G = 2 mu_s
+  /// constitutive law (kernels/constitutive.hpp): neo-Hookean (eq. 2.9) or strain-stiffening
+  /// W = mu_s (I1 - 3) + c3 (I1 - 3)^2
+  ConstitutiveLaw model = ConstitutiveLaw::NeoHookean;
+  double c3 = 0.0;            ///< strain-stiffening coefficient (model StrainStiffening only)
   double density = 1.0;       ///< rho_s
   double viscosity = 0.0;     ///< Kelvin-Voigt solid viscosity (0: no viscous stress in the solid)
   std::string velocity = "rigid";  ///< "rigid": u = (u, v) + omega x (x - centre); "fluid": keep the fluid's

@@ -821,7 +821,7 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
     if (!t) ctx.fail(prefix, arr->get(i), "expected a table ([[solid]] section), got " + describe(*arr->get(i)));
     Table s(ctx, *t, prefix);
     s.allow({"name", "shape", "center", "radius", "semi_axes", "half_size", "corner_radius", "slot_half_width",
-             "slot_top", "angle", "file", "mu_s", "density", "viscosity", "velocity", "u", "v", "omega"});
+             "slot_top", "angle", "file", "mu_s", "model", "c3", "density", "viscosity", "velocity", "u", "v", "omega"});
     SolidSpec sp;
 
     sp.name = s.string("name", "solid" + std::to_string(i));
@@ -912,6 +912,14 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
     const std::optional<double> no_default;
     sp.mu_s = s.number("mu_s", need_material ? no_default : std::optional<double>(0.0));
     s.require(sp.mu_s >= 0, "mu_s", "must be >= 0, got " + fmt_num(sp.mu_s));
+    if (s.choice("model", {"neo_hookean", "strain_stiffening"}, std::string("neo_hookean")) == "strain_stiffening") {
+      sp.model = ConstitutiveLaw::StrainStiffening;
+      sp.c3 = s.number("c3");
+      s.require(sp.c3 >= 0, "c3", "must be >= 0, got " + fmt_num(sp.c3));
+      s.require(sp.mu_s > 0 || !need_material, "mu_s", "must be > 0 with model = \"strain_stiffening\" (it is c1)");
+    } else if (s.has("c3")) {
+      s.fail("c3", "only used with model = \"strain_stiffening\"");
+    }
     sp.density = s.number("density", need_material ? no_default : std::optional<double>(1.0));
     s.require(sp.density > 0, "density", "must be > 0, got " + fmt_num(sp.density));
     sp.viscosity = s.number("viscosity", 0.0);
