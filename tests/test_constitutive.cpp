@@ -92,7 +92,8 @@ TEST(Constitutive, SimpleShearStressStrainStiffening) {
 
 TEST(Constitutive, StrainInvertsStress) {
   // the energy and the time step read b back from the stored stress
-  const Sym2 bs[] = {{1.0, 0.0, 1.0}, {2.25, 1.5, 1.0}, {0.8, -0.3, 1.4}, {4.0, 0.0, 0.25}};
+  // (the last one has tr b < 2: a volume-drifted state, where W1 is held at c1)
+  const Sym2 bs[] = {{1.0, 0.0, 1.0}, {2.25, 1.5, 1.0}, {0.8, -0.3, 1.4}, {4.0, 0.0, 0.25}, {0.9, 0.1, 0.95}};
   for (const Sym2& b : bs) {
     for (const Sym2 r : {NeoHookean(kC1).strain(NeoHookean(kC1).stress(b)),
                          StrainStiffening(kC1, kC3).strain(StrainStiffening(kC1, kC3).stress(b))}) {
@@ -101,6 +102,18 @@ TEST(Constitutive, StrainInvertsStress) {
       EXPECT_NEAR(r.yy, b.yy, 1e-13);
     }
   }
+}
+
+TEST(Constitutive, StiffeningNeverSoftensBelowC1) {
+  // tr b < 2 (det b < 1 of a volume-drifted discrete map): the unclamped W1 = c1 + 2 c3
+  // (tr b - 2) would be negative here (tr b - 2 = -0.4 < -c1 / (2 c3) = -0.27); the law
+  // keeps the neo-Hookean stress instead
+  const Sym2 b{0.8, 0.05, 0.8};
+  const Sym2 s = StrainStiffening(kC1, kC3).stress(b), n = NeoHookean(kC1).stress(b);
+  EXPECT_DOUBLE_EQ(s.xx, n.xx);
+  EXPECT_DOUBLE_EQ(s.xy, n.xy);
+  EXPECT_DOUBLE_EQ(s.yy, n.yy);
+  EXPECT_GT(StrainStiffening(kC1, kC3).wave_modulus(b), 0.0);
 }
 
 TEST(Constitutive, EnergyDensityOfSimpleShear) {
