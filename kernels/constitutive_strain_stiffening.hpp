@@ -23,9 +23,8 @@ struct StrainStiffening {
 
   /// W1 at x = I1 - 3 = tr b - 2. An incompressible plane strain has tr b >= 2; the
   /// discrete xi drifts in volume (det b < 1 allows tr b < 2), where the unclamped W1 would
-  /// drop below c1 and, for tr b - 2 < -c1 / (2 c3), turn negative (a negative stiffness:
-  /// a run of the soft disc in Taylor-Green flow with c3 = 4 mu_s blew up so). Such cells
-  /// get the neo-Hookean W1 = c1.
+  /// drop below c1 and, for tr b - 2 < -c1 / (2 c3), turn negative (a negative stiffness).
+  /// Such cells get the neo-Hookean W1 = c1.
   double w1(double x) const { return c1 + 2.0 * c3 * std::max(0.0, x); }
   /// Stored stress 2 W1 (b - I): sigma minus the isotropic 2 W1 I, which the pressure
   /// takes; zero at rest.
