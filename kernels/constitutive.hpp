@@ -10,8 +10,9 @@
 //   double wave_modulus(b) tangent shear modulus G_t: shear-wave speed sqrt(G_t / rho_s)
 //                          bounds the time step (section 4); 2 mu_s at rest
 // The kernels are templates on the model, so their inner loops stay inlined and vectorised.
-// Adding a model: one header kernels/constitutive_<name>.hpp, its enum value and case below,
-// and its scene value in solver/scene.cpp (plus SolidSpec fields for new parameters).
+// Adding a model: one header kernels/constitutive_<name>.hpp, its include, enum value and
+// case below, and its scene value in solver/scene.cpp (plus SolidSpec fields in
+// solver/config.hpp for new constants).
 #include <concepts>
 #include <utility>
 
@@ -33,15 +34,16 @@ static_assert(ConstitutiveModel<NeoHookean> && ConstitutiveModel<StrainStiffenin
 
 enum class ConstitutiveLaw { NeoHookean, StrainStiffening };
 
-/// Calls f(model) with the model of `law` built from its constants (mu_s: the paper's
-/// mu_s, c1 of the stiffening law; c3: the stiffening coefficient). The one switch on the law.
-template <class F>
-decltype(auto) with_constitutive_model(ConstitutiveLaw law, double mu_s, double c3, F&& f) {
-  switch (law) {
-    case ConstitutiveLaw::StrainStiffening: return std::forward<F>(f)(StrainStiffening(mu_s, c3));
+/// Calls f(model) with the model of mat.model built from the material constants of `mat`
+/// (a SolidSpec, solver/config.hpp: mu_s, the paper's mu_s and c1 of the stiffening law;
+/// c3, the stiffening coefficient). The one switch on the law.
+template <class Material, class F>
+decltype(auto) with_constitutive_model(const Material& mat, F&& f) {
+  switch (mat.model) {
+    case ConstitutiveLaw::StrainStiffening: return std::forward<F>(f)(StrainStiffening(mat.mu_s, mat.c3));
     case ConstitutiveLaw::NeoHookean: break;
   }
-  return std::forward<F>(f)(NeoHookean(mu_s));
+  return std::forward<F>(f)(NeoHookean(mat.mu_s));
 }
 
 }  // namespace refmap

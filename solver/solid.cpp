@@ -281,7 +281,7 @@ double Solid::add_model_stress(const Model& model, Field& sxx, Field& sxy, Field
 double Solid::add_stress(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& fy) {
   if (spec_.mu_s <= 0.0) return 0.0;
   // one dispatch on the constitutive law per call: the kernels are templates on the model
-  return with_constitutive_model(spec_.model, spec_.mu_s, spec_.c3, [&](const auto& model) {
+  return with_constitutive_model(spec_, [&](const auto& model) {
     return add_model_stress(model, sxx, sxy, syy, fx, fy);
   });
 }
@@ -333,7 +333,7 @@ double Solid::min_dt() const {
   // At finite strain the wave speed is sqrt(G_t / rho_s) with the model's tangent shear
   // modulus G_t (kernels/constitutive.hpp; neo-Hookean: G lambda_max(b)), the largest in the
   // solid at the last stress evaluation; at rest this is the paper's bound.
-  const double rest = with_constitutive_model(spec_.model, spec_.mu_s, spec_.c3, [](const auto& m) {
+  const double rest = with_constitutive_model(spec_, [](const auto& m) {
     return m.wave_modulus({1.0, 0.0, 1.0});
   });
   return opt_.solid_cfl * grid_.dx / std::sqrt(std::max(rest, max_wave_modulus_) / spec_.density);
