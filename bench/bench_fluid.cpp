@@ -7,7 +7,7 @@
 //                         right-hand side), S = 0 central, 1 Superbee
 //   ViscousForce/N        viscous_force (divergence of mu (grad u + grad u^T))
 //   StressDivergence/N    add_stress_divergence (f += div S, cell-centred S)
-//   NeoHookeanStress/N    neo_hookean_stress on a full N x N window (every cell inside the
+//   NeoHookeanStress/N    cell_stress<NeoHookean> on a full N x N window (every cell inside the
 //                         solid) with an affine deformed xi
 //   ProjectionFaces/N     face_accel + predict_face_velocity + face_divergence (step 5 of
 //                         Algorithm 1: the Poisson right-hand side from the cell velocity)
@@ -137,8 +137,8 @@ void BM_NeoHookean(benchmark::State& state) {
   fill_all(xiy, [dx](int i, int j) { return -0.1 * (i + 0.5) * dx + 0.95 * (j + 0.5) * dx; });
   phi.fill(-1.0);
   for (auto _ : state) {
-    neo_hookean_stress(xix.cview(), xiy.cview(), phi.cview(), n, n, dx, 0.5, 6.0 * dx,
-                       sxx.view(), sxy.view(), syy.view());
+    cell_stress(NeoHookean(0.5), xix.cview(), xiy.cview(), phi.cview(), n, n, dx, 6.0 * dx,
+                sxx.view(), sxy.view(), syy.view());
     benchmark::ClobberMemory();
   }
   set_counters(state, double(n) * n, 48, 30);

@@ -1,9 +1,13 @@
 #pragma once
-// Shared types of the two reference-map extrapolation kernels:
+// The one interface of the reference-map extrapolation methods (Extrapolator, made by
+// make_extrapolator from the [solids] options; solver/extrapolation.hpp) and the shared types
+// of their kernels:
 //   extrapolate_lsq  (kernels/extrapolate_lsq.hpp) - Jain & Mani least-squares plane fits
 //                    (Algorithm 2 of the seed), the method of the paper;
 //   extrapolate_pde  (kernels/extrapolate_pde.hpp) - Aslam (2004) linear PDE extrapolation,
 //                    the RMT baseline it is compared with.
+// Adding a method: a class deriving from Extrapolator in its own file and one line in
+// make_extrapolator (solver/extrapolation.cpp) plus its name in solver/option_names.cpp.
 //
 // Both work on one solid's WINDOW: window-local arrays of ni x nj cells with ng ghost layers,
 // cell size dx. The kernels treat every cell (i, j) with -ng <= i < ni+ng, -ng <= j < nj+ng
@@ -16,6 +20,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "solver/field.hpp"
@@ -34,6 +39,18 @@ struct ExtrapStats {
                            ///< (left unknown); LSQ: 0
   bool converged = true;   ///< PDE: both solves met the tolerance within max_iter
   double final_change = 0.0;  ///< PDE: last max |change| of the xi solve / its scale
+};
+
+/// One extrapolation method with its options and its reusable workspace (so one instance
+/// serves one solid at a time: not thread-safe).
+class Extrapolator {
+ public:
+  virtual ~Extrapolator() = default;
+  /// Fills xi_x, xi_y in the unknown cells of the band around the known ones (the window and
+  /// known-mask conventions above) and sets known = 1 there. phi: the solid's level set on
+  /// the window (negative inside), for methods that need it.
+  virtual ExtrapStats extrapolate(View xi_x, View xi_y, View2<std::uint8_t> known, CView phi,
+                                  int ni, int nj, int ng, double dx) = 0;
 };
 
 namespace detail {

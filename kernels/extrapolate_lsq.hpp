@@ -56,4 +56,18 @@ ExtrapStats extrapolate_lsq(View xi_x, View xi_y, View2<std::uint8_t> known, int
                             int ng, double dx, const LsqOptions& opt = {},
                             LsqWorkspace* ws = nullptr);
 
+/// extrapolate_lsq behind the Extrapolator interface, with its options and workspace.
+class LsqExtrapolator final : public Extrapolator {
+ public:
+  explicit LsqExtrapolator(const LsqOptions& opt) : opt_(opt) {}
+  ExtrapStats extrapolate(View xi_x, View xi_y, View2<std::uint8_t> known, CView /*phi*/, int ni,
+                          int nj, int ng, double dx) override {
+    return extrapolate_lsq(xi_x, xi_y, known, ni, nj, ng, dx, opt_, &ws_);
+  }
+
+ private:
+  LsqOptions opt_;
+  LsqWorkspace ws_;
+};
+
 }  // namespace refmap

@@ -71,4 +71,21 @@ ExtrapStats extrapolate_pde(View xi_x, View xi_y, View2<std::uint8_t> known, CVi
                             int nj, int ng, double dx, const PdeOptions& opt = {},
                             PdeWorkspace* ws = nullptr);
 
+/// extrapolate_pde behind the Extrapolator interface, with its options and workspace. The
+/// band is given in cells (PdeOptions::band = band_cells dx at each call).
+class PdeExtrapolator final : public Extrapolator {
+ public:
+  PdeExtrapolator(const PdeOptions& opt, double band_cells) : opt_(opt), band_cells_(band_cells) {}
+  ExtrapStats extrapolate(View xi_x, View xi_y, View2<std::uint8_t> known, CView phi, int ni,
+                          int nj, int ng, double dx) override {
+    opt_.band = band_cells_ * dx;
+    return extrapolate_pde(xi_x, xi_y, known, phi, ni, nj, ng, dx, opt_, &ws_);
+  }
+
+ private:
+  PdeOptions opt_;
+  double band_cells_;
+  PdeWorkspace ws_;
+};
+
 }  // namespace refmap

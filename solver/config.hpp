@@ -10,6 +10,7 @@
 #include "kernels/boundary_kind.hpp"
 #include "kernels/advection.hpp"
 #include "kernels/reference_map.hpp"
+#include "kernels/constitutive.hpp"
 #include "solver/grid.hpp"
 #include "solver/poisson.hpp"
 #include "solver/shape.hpp"
@@ -66,6 +67,10 @@ struct SolidSpec {
   std::string name;
   ShapeParams shape;          ///< reference configuration, phi0 of eq. (3.2)
   double mu_s = 0.0;          ///< the paper's mu^s: sigma = 2 mu_s b, shear modulus G = 2 mu_s
+  /// constitutive law (kernels/constitutive.hpp): neo-Hookean (eq. 2.9) or strain-stiffening
+  /// W = mu_s (I1 - 3) + c3 (I1 - 3)^2
+  ConstitutiveLaw model = ConstitutiveLaw::NeoHookean;
+  double c3 = 0.0;            ///< strain-stiffening coefficient (model StrainStiffening only)
   double density = 1.0;       ///< rho_s
   double viscosity = 0.0;     ///< Kelvin-Voigt solid viscosity (0: no viscous stress in the solid)
   /// Rigid: u = (u, v) + omega x (x - centre); Fluid: keep the fluid's

@@ -48,6 +48,12 @@ std::span<const OptionName<ExtrapolationMethod>> option_names(ExtrapolationMetho
   return span_of(n);
 }
 
+std::span<const OptionName<ConstitutiveLaw>> option_names(ConstitutiveLaw) {
+  static const OptionName<ConstitutiveLaw> n[] = {{ConstitutiveLaw::NeoHookean, "neo_hookean"},
+                                                  {ConstitutiveLaw::StrainStiffening, "strain_stiffening"}};
+  return span_of(n);
+}
+
 std::span<const OptionName<StressForm>> option_names(StressForm) {
   static const OptionName<StressForm> n[] = {{StressForm::Cell, "cell"}, {StressForm::Face, "face"}};
   return span_of(n);

@@ -907,6 +907,13 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
     sp.mu_s = s.number("mu_s", /*required=*/need_material);
     sp.density = s.number("density", /*required=*/need_material);
     sp.viscosity = s.number("viscosity");
+    sp.model = s.option<ConstitutiveLaw>("model");
+    if (const auto k = s.misplaced("model", to_string(sp.model)))
+      s.fail(*k, "only used with model = \"strain_stiffening\"");
+    if (sp.model == ConstitutiveLaw::StrainStiffening) {
+      sp.c3 = s.number("c3");
+      s.require(sp.mu_s > 0 || !need_material, "mu_s", "must be > 0 with model = \"strain_stiffening\" (it is c1)");
+    }
 
     // ---- initial velocity
     sp.velocity = s.option<SolidVelocity>("velocity");

@@ -278,6 +278,12 @@ std::vector<KeyDef> build_keys() {
                         "the paper's mu^s: solid stress sigma = 2 mu_s b (shear modulus 2 mu_s); 0 gives a "
                         "stress-free solid"),
                     "required (`0.0` with `flow = \"prescribed\"`)"),
+      choice<ConstitutiveLaw>("solid", "model", ds.model,
+                              "constitutive law (kernels/constitutive.hpp): the paper's neo-Hookean sigma = 2 mu_s b, or "
+                              "strain-stiffening W = mu_s (I1 - 3) + c3 (I1 - 3)^2"),
+      only(num("solid", "c3", std::nullopt, ge(0), "stiffening coefficient of W = mu_s (I1 - 3) + c3 (I1 - 3)^2; strong stiffening (c3 = 4 mu_s in "
+               "`disc_tgv`) blows up with the cell stress form, `solids.stress_discretisation = \"face\"` stays stable"),
+           "model", {"strain_stiffening"}),
       shown_default(num("solid", "density", ds.density, gt(0), "solid density rho_s"),
                     "required (`1.0` with `flow = \"prescribed\"`)"),
       num("solid", "viscosity", ds.viscosity, ge(0),

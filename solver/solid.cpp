@@ -5,11 +5,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "kernels/extrapolate_lsq.hpp"
-#include "kernels/extrapolate_pde.hpp"
 #include "kernels/loop.hpp"
 #include "kernels/reference_map.hpp"
 #include "kernels/solid_stress.hpp"
+#include "solver/extrapolation.hpp"
 
 namespace refmap {
 
@@ -23,6 +22,7 @@ Solid::Solid(const SolidSpec& spec, const SolidsOptions& opt, const Grid& g, Sid
   shape_ = make_shape(spec_.shape);
   band_ = opt_.band * g.dx;
   wt_ = opt_.transition * g.dx;
+  extrapolator_ = make_extrapolator(opt_);
   initialise();
 }
 
@@ -151,24 +151,8 @@ void Solid::extrapolate() {
   for (int j = 0; j < nj_; ++j)
     for (int i = 0; i < ni_; ++i) known_(i, j) = phi_(i, j) < 0.0 ? 1 : 0;
   const auto t0 = std::chrono::steady_clock::now();
-  const int passes = int(std::ceil(opt_.band - 1e-9));
-  ExtrapStats st;
-  if (opt_.extrapolation == ExtrapolationMethod::Pde) {
-    PdeOptions po;
-    po.band = band_;
-    po.tol = opt_.pde_tol;
-    po.max_iter = opt_.pde_max_iter;
-    static thread_local PdeWorkspace ws;
-    st = extrapolate_pde(xi_x_.view(), xi_y_.view(), known_.view(), phi_.view(), ni_, nj_,
-                         Grid::ng, grid_.dx, po, &ws);
-  } else {
-    LsqOptions lo;
-    lo.passes = passes;
-    lo.radius2 = int(std::floor(opt_.lsq_radius * opt_.lsq_radius + 1e-9));
-    static thread_local LsqWorkspace ws;
-    st = extrapolate_lsq(xi_x_.view(), xi_y_.view(), known_.view(), ni_, nj_, Grid::ng, grid_.dx,
-                         lo, &ws);
-  }
+  const ExtrapStats st = extrapolator_->extrapolate(xi_x_.view(), xi_y_.view(), known_.view(),
+                                                    phi_.view(), ni_, nj_, Grid::ng, grid_.dx);
   counters_.calls += 1;
   counters_.cells_filled += st.cells_filled;
   counters_.fallbacks += st.fallbacks;
@@ -262,30 +246,22 @@ void Solid::add_blend(Field& out, double q_s, double q_f) const {
   });
 }
 
-double Solid::add_stress(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& fy) {
-  if (spec_.mu_s <= 0.0) return 0.0;
+template <class Model>
+double Solid::add_model_stress(const Model& model, Field& sxx, Field& sxy, Field& syy, Field& fx,
+                               Field& fy) {
   // cell-centred stress (eq. 2.9 with eq. 3.1), one cell beyond the transition zone so the
   // non-conservative cell divergence at its edge sees valid neighbours; blended into the
   // global tensor it is the output field and gives the elastic energy
-  neo_hookean_stress(xi_x_.view(), xi_y_.view(), phi_.view(), ni_, nj_, grid_.dx, spec_.mu_s,
-                     wt_ + 1.5 * grid_.dx, sxx_.view(), sxy_.view(), syy_.view());
-  const double energy = blend_stress(sxx_.view(), sxy_.view(), syy_.view(), phi_.view(), ni_, nj_,
-                                     grid_.dx, wt_, spec_.mu_s, sxx.view(), sxy.view(), syy.view(),
+  cell_stress(model, xi_x_.view(), xi_y_.view(), phi_.view(), ni_, nj_, grid_.dx,
+              wt_ + 1.5 * grid_.dx, sxx_.view(), sxy_.view(), syy_.view());
+  const double energy = blend_stress(model, sxx_.view(), sxy_.view(), syy_.view(), phi_.view(),
+                                     ni_, nj_, grid_.dx, wt_, sxx.view(), sxy.view(), syy.view(),
                                      i0_, j0_);
-  // largest principal stretch squared (eigenvalue of b) in the solid, for the time step
-  double lmax = 1.0;
-  const double inv2mu = 1.0 / (2.0 * spec_.mu_s);
-  for (int j = 0; j < nj_; ++j)
-    for (int i = 0; i < ni_; ++i) {
-      if (!(phi_(i, j) < wt_)) continue;
-      const double bxx = 1.0 + sxx_(i, j) * inv2mu, byy = 1.0 + syy_(i, j) * inv2mu;
-      const double bxy = sxy_(i, j) * inv2mu;
-      const double m = 0.5 * (bxx + byy), d = std::sqrt(0.25 * (bxx - byy) * (bxx - byy) + bxy * bxy);
-      lmax = std::max(lmax, m + d);
-    }
-  max_stretch2_ = lmax;
+  // largest tangent shear modulus in the solid, for the time step
+  max_wave_modulus_ = max_wave_modulus(model, sxx_.view(), sxy_.view(), syy_.view(), phi_.view(),
+                                       ni_, nj_, wt_);
   if (opt_.stress_form == StressForm::Face) {
-    add_face_stress_force(xi_x_.view(), xi_y_.view(), phi_.view(), ni_, nj_, grid_.dx, spec_.mu_s,
+    add_face_stress_force(model, xi_x_.view(), xi_y_.view(), phi_.view(), ni_, nj_, grid_.dx,
                           wt_, opt_.conservative, fx.view(), fy.view(), i0_, j0_);
   } else if (!opt_.conservative) {
     for (Field* f : {&sxx_, &sxy_, &syy_})  // ghosts are outside the band: zero stress
@@ -297,6 +273,14 @@ double Solid::add_stress(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& f
   }
   // Cell + conservative: the caller takes the divergence of the global blended tensor
   return energy;
+}
+
+double Solid::add_stress(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& fy) {
+  if (spec_.mu_s <= 0.0) return 0.0;
+  // one dispatch on the constitutive law per call: the kernels are templates on the model
+  return with_constitutive_model(spec_, [&](const auto& model) {
+    return add_model_stress(model, sxx, sxy, syy, fx, fy);
+  });
 }
 
 void Solid::impose_initial_velocity(Field& u, Field& v) const {
@@ -343,11 +327,13 @@ SolidDiagnostics Solid::diagnostics(const Field& u, const Field& v) const {
 double Solid::min_dt() const {
   if (spec_.mu_s <= 0.0) return 1e300;
   // section 4: dt <= P dx sqrt(rho_s / G), shear-wave speed sqrt(G / rho_s), G = 2 mu_s.
-  // At finite strain the neo-Hookean tangent stiffness along a principal direction grows
-  // with the stretch squared (eigenvalue of b), so the wave speed is taken as
-  // sqrt(G lambda_max(b) / rho_s); at rest this is the paper's bound.
-  return opt_.solid_cfl * grid_.dx /
-         std::sqrt(2.0 * spec_.mu_s * std::max(1.0, max_stretch2_) / spec_.density);
+  // At finite strain the wave speed is sqrt(G_t / rho_s) with the model's tangent shear
+  // modulus G_t (kernels/constitutive.hpp; neo-Hookean: G lambda_max(b)), the largest in the
+  // solid at the last stress evaluation; at rest this is the paper's bound.
+  const double rest = with_constitutive_model(spec_, [](const auto& m) {
+    return m.wave_modulus({1.0, 0.0, 1.0});
+  });
+  return opt_.solid_cfl * grid_.dx / std::sqrt(std::max(rest, max_wave_modulus_) / spec_.density);
 }
 
 std::size_t Solid::storage_bytes() const {

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "kernels/boundary_kind.hpp"
+#include "kernels/extrapolate.hpp"
 #include "kernels/fast_marching.hpp"
 #include "solver/config.hpp"
 #include "solver/field.hpp"
@@ -50,7 +51,8 @@ class Solid {
   /// differences, H = 1 only where phi < 0; the band is re-extrapolated before the
   /// right-hand side of stages 2-4.
   void advect(const Field& uf, const Field& vf, double dt);
-  /// Fills xi in the band from the cells advected (phi < 0) by least squares or the PDE.
+  /// Fills xi in the band from the cells advected (phi < 0) by the method of
+  /// solids.extrapolation (least squares or the PDE; kernels/extrapolate.hpp).
   void extrapolate();
   /// phi = phi0(xi) (eq. 3.2) on the band, reinitialised by fast marching; moves/grows
   /// the window when the band comes near its edge.
@@ -60,8 +62,8 @@ class Solid {
   /// Adds (1 - H) (q_s - q_f) to `out` over the window (density or viscosity blending,
   /// eq. 3.6: q = q_f + sum_i (1 - H_i)(q_s,i - q_f)).
   void add_blend(Field& out, double q_s, double q_f) const;
-  /// Neo-Hookean stress of the solid on its window; conservative: adds (1-H) sigma_s to
-  /// the global tensor (sxx, sxy, syy); non-conservative: adds (1-H) div sigma_s to the
+  /// Stress of the solid's constitutive model (kernels/constitutive.hpp) on its window;
+  /// conservative: adds (1-H) sigma_s to the global tensor (sxx, sxy, syy); non-conservative: adds (1-H) div sigma_s to the
   /// force (fx, fy). Returns the elastic energy.
   double add_stress(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& fy);
 
@@ -103,6 +105,10 @@ class Solid {
   /// extrapolation.
   void fill_ghosts(Field& f, int component) const;
   void compute_phi_from_xi();
+  /// add_stress for one constitutive model (solver/solid.cpp).
+  template <class Model>
+  double add_model_stress(const Model& model, Field& sxx, Field& sxy, Field& syy, Field& fx,
+                          Field& fy);
 
   SolidSpec spec_;
   SolidsOptions opt_;
@@ -116,9 +122,10 @@ class Solid {
   Field sxx_, sxy_, syy_;
   Mask known_;
   FmmWorkspace fmm_ws_;
+  std::unique_ptr<Extrapolator> extrapolator_;  ///< solids.extrapolation, owns its workspace
   ExtrapolationCounters counters_;
   long rewindows_ = 0;
-  double max_stretch2_ = 1.0;  ///< largest eigenvalue of b in the solid at the last stress evaluation
+  double max_wave_modulus_ = 0.0;  ///< largest tangent shear modulus in the solid at the last stress evaluation (0: none yet)
 };
 
 }  // namespace refmap

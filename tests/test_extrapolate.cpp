@@ -8,10 +8,15 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "kernels/extrapolate_lsq.hpp"
 #include "kernels/extrapolate_pde.hpp"
+#include "solver/config.hpp"
+#include "solver/extrapolation.hpp"
+#include "solver/option_names.hpp"
 #include "solver/field.hpp"
 #include "tests/fixtures/zalesak_geometry.hpp"
 
@@ -522,4 +527,48 @@ TEST(ExtrapolatePDE, DeterministicThreads) {
     EXPECT_EQ(0, std::memcmp(vy.data(), ref_y.data(), vy.size() * sizeof(double)));
   }
   omp_set_num_threads(saved);
+}
+
+// The Extrapolator interface (make_extrapolator, the one mapping of solids.extrapolation):
+// each method must give, call after call on its own workspace, exactly what its kernel gives
+// with the options the solver maps from the scene (band 6 cells, fit radius 2 sqrt(2)).
+TEST(ExtrapolatorInterface, FactoryMethodsMatchTheirKernels) {
+  for (const ExtrapolationMethod m : {ExtrapolationMethod::Lsq, ExtrapolationMethod::Pde}) {
+    const std::string method = to_string(m);
+    SolidsOptions so;
+    so.extrapolation = m;
+    const auto ex = make_extrapolator(so);
+    for (int rep = 0; rep < 2; ++rep) {  // the second call reuses the workspace
+      const double r = rep == 0 ? 0.15 : 0.22;
+      Case a(48, disc_phi(0.5, 0.5, r), nl_x, nl_y), b(48, disc_phi(0.5, 0.5, r), nl_x, nl_y);
+      const ExtrapStats sa = ex->extrapolate(a.xx.view(), a.xy.view(), a.known.view(), a.phi.cview(),
+                                             a.N, a.N, a.ng, a.dx);
+      ExtrapStats sb;
+      if (m == ExtrapolationMethod::Lsq) {
+        LsqOptions o;
+        o.passes = 6;
+        o.radius2 = 8;
+        sb = b.lsq(o);
+      } else {
+        PdeOptions o;
+        o.band = 6 * b.dx;
+        o.tol = so.pde_tol;
+        o.max_iter = so.pde_max_iter;
+        sb = b.pde(o);
+      }
+      EXPECT_GT(sa.cells_filled, 0) << method;
+      EXPECT_EQ(sa.cells_filled, sb.cells_filled) << method;
+      EXPECT_EQ(sa.iterations, sb.iterations) << method;
+      for (int j = -a.ng; j < a.N + a.ng; ++j)
+        for (int i = -a.ng; i < a.N + a.ng; ++i) {
+          ASSERT_EQ(a.known(i, j), b.known(i, j)) << method << " " << i << " " << j;
+          if (!a.known(i, j)) continue;
+          ASSERT_EQ(a.xx(i, j), b.xx(i, j)) << method << " " << i << " " << j;
+          ASSERT_EQ(a.xy(i, j), b.xy(i, j)) << method << " " << i << " " << j;
+        }
+    }
+  }
+  SolidsOptions bad;
+  bad.extrapolation = ExtrapolationMethod(99);
+  EXPECT_THROW(make_extrapolator(bad), std::invalid_argument);
 }
