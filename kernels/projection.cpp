@@ -7,7 +7,7 @@
 namespace refmap {
 
 void face_beta(CView rho, View bx, View by, int nx, int ny, FaceBoundary fb) {
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     const double* __restrict r = &rho(0, j);
     double* __restrict b = &bx(0, j);
 #pragma omp simd
@@ -16,7 +16,7 @@ void face_beta(CView rho, View bx, View by, int nx, int ny, FaceBoundary fb) {
     bx(0, j) = edge;
     bx(nx, j) = edge;
   });
-  parallel_rows(0, ny + 1, [&](int j) {
+  parallel_rows(0, ny + 1, nx, [&](int j) {
     const bool boundary = (j == 0 || j == ny);
     if (boundary && !fb.periodic_y) {
       for (int i = 0; i < nx; ++i) by(i, j) = 0.0;
@@ -34,7 +34,7 @@ void face_beta(CView rho, View bx, View by, int nx, int ny, FaceBoundary fb) {
 void face_accel(CView p, CView bx, CView by, View gx_f, View gy_f, int nx, int ny, double dx,
                 double gx, double gy, double rho_ref, FaceBoundary fb) {
   const double inv = 1.0 / dx;
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     {
       const double* __restrict br = &bx(0, j);
       const double* __restrict pr = &p(0, j);
@@ -53,7 +53,7 @@ void face_accel(CView p, CView bx, CView by, View gx_f, View gy_f, int nx, int n
     gx_f(0, j) = edge;
     gx_f(nx, j) = edge;
   });
-  parallel_rows(0, ny + 1, [&](int j) {
+  parallel_rows(0, ny + 1, nx, [&](int j) {
     const bool boundary = (j == 0 || j == ny);
     if (boundary && !fb.periodic_y) {
       for (int i = 0; i < nx; ++i) gy_f(i, j) = 0.0;
@@ -74,7 +74,7 @@ void face_accel(CView p, CView bx, CView by, View gx_f, View gy_f, int nx, int n
 
 void predict_face_velocity(CView u, CView v, CView gx_f, CView gy_f, View uf, View vf, int nx,
                            int ny, double dt, FaceBoundary fb) {
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     {
       const double* __restrict ur = &u(0, j);
       const double* __restrict g = &gx_f(0, j);
@@ -86,7 +86,7 @@ void predict_face_velocity(CView u, CView v, CView gx_f, CView gy_f, View uf, Vi
     uf(0, j) = edge;
     uf(nx, j) = edge;
   });
-  parallel_rows(0, ny + 1, [&](int j) {
+  parallel_rows(0, ny + 1, nx, [&](int j) {
     const bool boundary = (j == 0 || j == ny);
     if (boundary && !fb.periodic_y) {
       for (int i = 0; i < nx; ++i) vf(i, j) = 0.0;
@@ -104,7 +104,7 @@ void predict_face_velocity(CView u, CView v, CView gx_f, CView gy_f, View uf, Vi
 
 void face_divergence(CView uf, CView vf, View out, int nx, int ny, double dx, double scale) {
   const double s = scale / dx;
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     const double* ul = &uf(0, j);
     const double* vb = &vf(0, j);
     const double* vt = &vf(0, j + 1);
@@ -116,7 +116,7 @@ void face_divergence(CView uf, CView vf, View out, int nx, int ny, double dx, do
 
 double max_abs_face_divergence(CView uf, CView vf, int nx, int ny, double dx) {
   const double s = 1.0 / dx;
-  return parallel_rows_max(0, ny, [&](int j) {
+  return parallel_rows_max(0, ny, nx, [&](int j) {
     double m = 0.0;
     for (int i = 0; i < nx; ++i) {
       const double d = std::abs(s * (uf(i + 1, j) - uf(i, j) + vf(i, j + 1) - vf(i, j)));
@@ -130,7 +130,7 @@ double max_abs_face_divergence(CView uf, CView vf, int nx, int ny, double dx) {
 void correct_face_velocity(View uf, View vf, CView dp, CView bx, CView by, int nx, int ny,
                            double dx, double dt, FaceBoundary fb) {
   const double c = dt / dx;
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     {
       const double* __restrict b = &bx(0, j);
       const double* __restrict d = &dp(0, j);
@@ -144,7 +144,7 @@ void correct_face_velocity(View uf, View vf, CView dp, CView bx, CView by, int n
       uf(nx, j) = e;
     }
   });
-  parallel_rows(0, ny + 1, [&](int j) {
+  parallel_rows(0, ny + 1, nx, [&](int j) {
     const bool boundary = (j == 0 || j == ny);
     if (boundary && !fb.periodic_y) return;
     if (j == ny) return;  // periodic: copied from face 0 below
@@ -161,7 +161,7 @@ void correct_face_velocity(View uf, View vf, CView dp, CView bx, CView by, int n
 
 void correct_cell_velocity(View u, View v, CView gx_f, CView gy_f, int nx, int ny, double dt) {
   const double c = 0.5 * dt;
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     double* ur = &u(0, j);
     double* vr = &v(0, j);
     const double* gx = &gx_f(0, j);

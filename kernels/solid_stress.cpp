@@ -8,7 +8,7 @@ void neo_hookean_stress(CView xi_x, CView xi_y, CView phi, int ni, int nj, doubl
                         double phi_max, View sxx, View sxy, View syy) {
   const double inv2 = 0.5 / dx;
   const double c = 2.0 * mu_s;
-  parallel_rows(0, nj, [=](int j) {
+  parallel_rows(0, nj, ni, [=](int j) {
     // restrict-qualified row pointers and a select instead of a branch, so that the loop
     // vectorises; cells with phi >= phi_max are computed too (from whatever xi holds there,
     // possibly stale) and then discarded by the select
@@ -40,7 +40,7 @@ void neo_hookean_stress(CView xi_x, CView xi_y, CView phi, int ni, int nj, doubl
 double blend_stress(CView sxx, CView sxy, CView syy, CView phi, int ni, int nj, double dx,
                     double w_t, double mu_s, View gxx, View gxy, View gyy, int i0, int j0) {
   const double inv2mu = mu_s > 0.0 ? 0.5 / mu_s : 0.0;
-  const double e = parallel_rows_sum(0, nj, [&](int j) {
+  const double e = parallel_rows_sum(0, nj, ni, [&](int j) {
     double en = 0.0;
     for (int i = 0; i < ni; ++i) {
       const double ph = phi(i, j);
@@ -64,7 +64,7 @@ double blend_stress(CView sxx, CView sxy, CView syy, CView phi, int ni, int nj, 
 void blend_stress_divergence(CView sxx, CView sxy, CView syy, CView phi, int ni, int nj,
                              double dx, double w_t, View fx, View fy, int i0, int j0) {
   const double inv2 = 0.5 / dx;
-  parallel_rows(0, nj, [&](int j) {
+  parallel_rows(0, nj, ni, [&](int j) {
     for (int i = 0; i < ni; ++i) {
       const double ph = phi(i, j);
       if (ph >= w_t) continue;
@@ -80,7 +80,7 @@ void blend_stress_divergence(CView sxx, CView sxy, CView syy, CView phi, int ni,
 void add_stress_divergence(CView sxx, CView sxy, CView syy, View fx, View fy, int nx, int ny,
                            double dx) {
   const double inv2 = 0.5 / dx;
-  parallel_rows(0, ny, [=](int j) {
+  parallel_rows(0, ny, nx, [=](int j) {
     // restrict-qualified row pointers so that the loop vectorises
     const double* __restrict xx = &sxx(0, j);
     const double* __restrict xys = &sxy(0, j - 1);
@@ -137,7 +137,7 @@ void add_face_stress_force(CView xi_x, CView xi_y, CView phi, int ni, int nj, do
   const double inv = 1.0 / dx;
   const double c = 2.0 * mu_s;
   const double cut = w_t + 2.0 * dx;  // (1 - H) vanishes beyond w_t; margin for the faces
-  parallel_rows(0, nj, [&](int j) {
+  parallel_rows(0, nj, ni, [&](int j) {
     for (int i = 0; i < ni; ++i) {
       const double ph = phi(i, j);
       if (!(ph < cut)) continue;
