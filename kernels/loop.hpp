@@ -6,9 +6,10 @@
 //  * Row loops: rows of the grid are split statically across OpenMP threads; each kernel
 //    body is a plain inner loop over i that the compiler vectorises.
 //  * Work threshold: a loop over fewer than kMinParallelCells cells runs on the calling
-//    thread (the parallel region's `if` clause is false, no threads are woken): on small
-//    grids (the 8 x 128 elastic Couette layer, small solid windows, coarse multigrid
-//    levels) fork/join and barriers cost more than the loop.
+//    thread as a plain loop, without a parallel region: on small grids (the 8 x 128 elastic
+//    Couette layer, small solid windows, coarse multigrid levels) fork/join and barriers
+//    cost more than the loop. (Not even an `if (false)` region: libgomp still builds a
+//    team of one for it, measured ~2 us per call, more than an axpy over 128^2 cells.)
 //  * Deterministic reductions: a sum over rows stores one partial per row, f(j), and adds
 //    the partials serially in row order, so the result has the same bits for any number
 //    of threads (an OpenMP reduction clause combines per-thread partial sums in an order
@@ -26,10 +27,12 @@
 
 namespace refmap {
 
-/// Cells of work below which a loop runs on one thread. Measured (2 cores, see the
-/// commit message of this constant and results/README): a 2-thread parallel_rows axpy
-/// first beats one thread at ~8k-16k cells with the default wait policy, and at ~32k
-/// with OMP_WAIT_POLICY=PASSIVE (a sleeping partner takes ~10 us to wake).
+/// Cells of work below which a loop runs on one thread. Measured on the 2-core VM (AMD
+/// EPYC, shared, min of 15 repeats; default wait policy): 2 threads beat 1 from ~9k cells
+/// for a 5-point residual norm (~10 flop/cell) and from ~40k for an axpy (bandwidth
+/// bound, ~2 us fork/join); with OMP_WAIT_POLICY=PASSIVE (a sleeping partner must be
+/// woken, ~10-20 us) only from ~250k. 16384 (128^2) sits between the two kernel kinds and
+/// keeps the former multigrid per-level threshold.
 inline constexpr std::size_t kMinParallelCells = 16384;
 
 /// Team size for a loop over `rows` rows holding `cells` cells in all: 1 below
@@ -75,8 +78,12 @@ class RowPartials {
 /// calling thread, no parallel region.
 template <class F>
 inline void parallel_rows_on(int nt, int j0, int j1, F&& f) {
-  nt = std::max(1, std::min(nt, j1 - j0));
-#pragma omp parallel for schedule(static) num_threads(nt) if (nt > 1)
+  nt = std::min(nt, j1 - j0);
+  if (nt <= 1) {
+    for (int j = j0; j < j1; ++j) f(j);
+    return;
+  }
+#pragma omp parallel for schedule(static) num_threads(nt)
   for (int j = j0; j < j1; ++j) f(j);
 }
 
@@ -101,11 +108,17 @@ template <int N, class F>
 inline std::array<double, N> parallel_rows_sums_on(int nt, int j0, int j1, F&& f) {
   std::array<double, N> s{};
   const int n = j1 - j0;
-  if (n <= 0) return s;
+  nt = std::min(nt, n);
+  if (nt <= 1) {  // the same order as the partials below, without storing them
+    for (int j = j0; j < j1; ++j) {
+      const std::array<double, N> a = f(j);
+      for (int k = 0; k < N; ++k) s[k] += a[k];
+    }
+    return s;
+  }
   RowPartials part(std::size_t(n) * N);
   double* pp = part.data();
-  nt = std::max(1, std::min(nt, n));
-#pragma omp parallel for schedule(static) num_threads(nt) if (nt > 1)
+#pragma omp parallel for schedule(static) num_threads(nt)
   for (int j = j0; j < j1; ++j) {
     const std::array<double, N> a = f(j);
     for (int k = 0; k < N; ++k) pp[std::size_t(j - j0) * N + k] = a[k];
@@ -138,7 +151,14 @@ inline double parallel_rows_max(int j0, int j1, int row_len, F&& f) {
   double m = 0.0;
   const int nt =
       loop_threads(std::size_t(std::max(0, j1 - j0)) * std::size_t(std::max(0, row_len)), j1 - j0);
-#pragma omp parallel for schedule(static) reduction(max : m) num_threads(nt) if (nt > 1)
+  if (nt <= 1) {
+    for (int j = j0; j < j1; ++j) {
+      const double r = f(j);
+      m = r > m ? r : m;
+    }
+    return m;
+  }
+#pragma omp parallel for schedule(static) reduction(max : m) num_threads(nt)
   for (int j = j0; j < j1; ++j) {
     const double r = f(j);
     m = r > m ? r : m;
@@ -155,8 +175,11 @@ inline double parallel_rows_max(int j0, int j1, F&& f) {
 template <class F>
 inline long parallel_items_count(int nt, long n, F&& f) {
   long s = 0;
-  nt = std::max(1, nt);
-#pragma omp parallel for schedule(static) reduction(+ : s) num_threads(nt) if (nt > 1)
+  if (nt <= 1) {
+    for (long c = 0; c < n; ++c) s += f(c);
+    return s;
+  }
+#pragma omp parallel for schedule(static) reduction(+ : s) num_threads(nt)
   for (long c = 0; c < n; ++c) s += f(c);
   return s;
 }
@@ -172,25 +195,35 @@ struct Team {
   std::pair<int, int> rows(int n) const { return {chunk_lo(n, t), chunk_lo(n, t + 1)}; }
   bool first() const { return t == 0; }
   bool last() const { return t == nt - 1; }
-  /// Every thread of the team waits here.
+  /// Every thread of the team waits here (a team of one never enters OpenMP, so a
+  /// serial team inside some other parallel region does not bind to that region).
   void barrier() const {
+    if (nt > 1) {
 #pragma omp barrier
+    }
   }
   /// One thread runs g, the others wait for it (barrier at the end).
   template <class G>
   void single(G&& g) const {
+    if (nt <= 1) {
+      g();
+      return;
+    }
 #pragma omp single
     g();
   }
 };
 
-/// Runs f(Team) on every thread of one parallel region of nt threads (nt <= 1: on the
-/// calling thread, no parallel region). For fused passes that synchronise internally:
-/// one fork/join for the whole pass.
+/// Runs f(Team) on every thread of one parallel region of nt threads (nt <= 1: f(Team{0,
+/// 1}) on the calling thread, no parallel region; its barriers are then no-ops). For
+/// fused passes that synchronise internally: one fork/join for the whole pass.
 template <class F>
 inline void team_region(int nt, F&& f) {
-  nt = std::max(1, nt);
-#pragma omp parallel num_threads(nt) if (nt > 1)
+  if (nt <= 1) {
+    f(Team{});
+    return;
+  }
+#pragma omp parallel num_threads(nt)
   {
     const Team tm{omp_get_thread_num(), omp_get_num_threads()};
     f(tm);
