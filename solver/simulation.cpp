@@ -12,6 +12,7 @@
 #include "kernels/advection.hpp"
 #include "kernels/loop.hpp"
 #include "kernels/projection.hpp"
+#include "kernels/rk4.hpp"
 #include "kernels/solid_stress.hpp"
 #include "kernels/viscous.hpp"
 #include "solver/boundary.hpp"
@@ -371,31 +372,34 @@ double Simulation::step(double dt) {
     // the previous step, RK-4 in time (the face velocities are frozen over the stages)
     ScopedPhase ph(timers_, "advection");
     const double t = t_;
-    parallel_rows(0, ny, [&](int j) {
+    parallel_rows(0, ny, nx, [&](int j) {
       for (int i = 0; i < nx; ++i) {
         mx_(i, j) = rho_old_(i, j) * u_(i, j);
         my_(i, j) = rho_old_(i, j) * v_(i, j);
       }
     });
-    auto rhs = [&](Field& qx, Field& qy, Field& kx, Field& ky) {
+    // (mx_, my_) holds q0 and receives the result; stage states in (sx_, sy_)
+    Rk4Fields f;
+    f.q0x = mx_.cview();
+    f.q0y = my_.cview();
+    f.sx = sx_.view();
+    f.sy = sy_.view();
+    f.accx = kx_.view();
+    f.accy = ky_.view();
+    f.kx = k2x_.view();
+    f.ky = k2y_.view();
+    f.outx = mx_.view();
+    f.outy = my_.view();
+    f.ni = nx;
+    f.nj = ny;
+    rk4_step(f, dt, [&](int stage, View kx, View ky) {
+      Field& qx = stage == 1 ? mx_ : sx_;
+      Field& qy = stage == 1 ? my_ : sy_;
       fill_vector_ghosts(qx, qy, cfg_.bc, t, cfg_.rho_f);
-      advect_rhs2(qx.view(), qy.view(), uf_.view(), vf_.view(), kx.view(), ky.view(), nx, ny,
-                  g.dx, scheme);
-    };
-    rhs(mx_, my_, kx_, ky_);
-    axpy_interior(mx_.view(), kx_.view(), 0.5 * dt, sx_.view(), nx, ny);
-    axpy_interior(my_.view(), ky_.view(), 0.5 * dt, sy_.view(), nx, ny);
-    rhs(sx_, sy_, k2x_, k2y_);
-    axpy_interior(mx_.view(), k2x_.view(), 0.5 * dt, sx_.view(), nx, ny);
-    axpy_interior(my_.view(), k2y_.view(), 0.5 * dt, sy_.view(), nx, ny);
-    rhs(sx_, sy_, k3x_, k3y_);
-    axpy_interior(mx_.view(), k3x_.view(), dt, sx_.view(), nx, ny);
-    axpy_interior(my_.view(), k3y_.view(), dt, sy_.view(), nx, ny);
-    rhs(sx_, sy_, k4x_, k4y_);
-    rk4_combine(mx_.view(), kx_.view(), k2x_.view(), k3x_.view(), k4x_.view(), dt, nx, ny);
-    rk4_combine(my_.view(), ky_.view(), k2y_.view(), k3y_.view(), k4y_.view(), dt, nx, ny);
+      advect_rhs2(qx.view(), qy.view(), uf_.view(), vf_.view(), kx, ky, nx, ny, g.dx, scheme);
+    });
     // u* = (rho u)* / rho^{n+1}
-    parallel_rows(0, ny, [&](int j) {
+    parallel_rows(0, ny, nx, [&](int j) {
       for (int i = 0; i < nx; ++i) {
         u_(i, j) = mx_(i, j) / rho_(i, j);
         v_(i, j) = my_(i, j) / rho_(i, j);
