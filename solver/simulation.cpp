@@ -248,7 +248,7 @@ double Simulation::stable_dt() const {
   const Grid& g = cfg_.grid;
   // advective: dt (|u| + |v|)_max / dx <= cfl (section 4; RK-4 with central fluxes is stable
   // to a Courant number of 2.8 on the imaginary axis, the scene's cfl keeps a margin)
-  double umax = parallel_rows_max(0, g.ny, [&](int j) {
+  double umax = parallel_rows_max(0, g.ny, g.nx, [&](int j) {
     double m = 0.0;
     for (int i = 0; i < g.nx; ++i) m = std::max(m, std::abs(u_(i, j)) + std::abs(v_(i, j)));
     return m;
@@ -262,7 +262,7 @@ double Simulation::stable_dt() const {
   // (the checkerboard mode: 8 from the compact normal stress 2 mu u_xx, 4 from mu u_yy),
   // so forward Euler is stable for dt <= rho dx^2 / (6 mu). The paper's 0.5 rho dx^2 / mu
   // is the bound of the 1-D Laplacian.
-  double nu_max = parallel_rows_max(0, g.ny, [&](int j) {
+  double nu_max = parallel_rows_max(0, g.ny, g.nx, [&](int j) {
     double m = 0.0;
     for (int i = 0; i < g.nx; ++i) m = std::max(m, mu_(i, j) / rho_(i, j));
     return m;
@@ -284,14 +284,14 @@ void Simulation::add_contact_face_accel() {
   if (!(contact_ && contact_->force_enabled())) return;
   const Grid& g = cfg_.grid;
   const bool px = periodic_x(cfg_.bc), py = periodic_y(cfg_.bc);
-  parallel_rows(0, g.ny, [&](int j) {
+  parallel_rows(0, g.ny, g.nx, [&](int j) {
     for (int i = 1; i < g.nx; ++i) gxf_(i, j) -= beta_x_(i, j) * cfx_(i, j);
     if (px) {
       gxf_(0, j) -= beta_x_(0, j) * cfx_(0, j);
       gxf_(g.nx, j) = gxf_(0, j);
     }
   });
-  parallel_rows(0, g.ny + 1, [&](int j) {
+  parallel_rows(0, g.ny + 1, g.nx, [&](int j) {
     if ((j == 0 || j == g.ny) && !py) return;  // wall faces carry no normal velocity
     const int jj = j == g.ny ? 0 : j;
     for (int i = 0; i < g.nx; ++i) gyf_(i, j) -= beta_y_(i, jj) * cfy_(i, jj);
@@ -322,7 +322,7 @@ void Simulation::project(double dt) {
     ScopedPhase ph(timers_, "projection");
     fill_scalar_ghosts(dp_, cfg_.bc);
     // step 7, eq. (5.5)
-    parallel_rows(0, g.ny, [&](int j) {
+    parallel_rows(0, g.ny, g.nx, [&](int j) {
       for (int i = 0; i < g.nx; ++i) p_(i, j) += dp_(i, j);
     });
     fill_scalar_ghosts(p_, cfg_.bc);
@@ -485,7 +485,7 @@ Field Simulation::named_field(const std::string& name) const {
 
 double Simulation::kinetic_energy() const {
   const Grid& g = cfg_.grid;
-  return g.dx * g.dx * parallel_rows_sum(0, g.ny, [&](int j) {
+  return g.dx * g.dx * parallel_rows_sum(0, g.ny, g.nx, [&](int j) {
     double s = 0.0;
     for (int i = 0; i < g.nx; ++i)
       s += 0.5 * rho_(i, j) * (u_(i, j) * u_(i, j) + v_(i, j) * v_(i, j));
