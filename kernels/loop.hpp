@@ -9,7 +9,7 @@
 //    thread as a plain loop, without a parallel region: on small grids (the 8 x 128 elastic
 //    Couette layer, small solid windows, coarse multigrid levels) fork/join and barriers
 //    cost more than the loop. (Not even an `if (false)` region: libgomp still builds a
-//    team of one for it, measured ~2 us per call, more than an axpy over 128^2 cells.)
+//    team of one for it: measured ~2 us per call, as much as an axpy over 128^2 cells.)
 //  * Deterministic reductions: a sum over rows stores one partial per row, f(j), and adds
 //    the partials serially in row order, so the result has the same bits for any number
 //    of threads (an OpenMP reduction clause combines per-thread partial sums in an order
