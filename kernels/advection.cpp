@@ -21,7 +21,7 @@ template <FluxScheme S>
 void advect_rhs2_impl(CView a, CView b, CView uf, CView vf, View ra, View rb, int nx, int ny,
                       double dx) {
   const double inv = 1.0 / dx;
-  parallel_rows(0, ny, [=](int j) {
+  parallel_rows(0, ny, nx, [=](int j) {
     // restrict-qualified row pointers: the inner loop then vectorises (through the views
     // the compiler could not prove that the stores leave the loads' rows alone)
     const double* __restrict am2 = &a(0, j - 2);
@@ -66,26 +66,6 @@ void advect_rhs2(CView a, CView b, CView uf, CView vf, View rhs_a, View rhs_b, i
     advect_rhs2_impl<FluxScheme::Central>(a, b, uf, vf, rhs_a, rhs_b, nx, ny, dx);
   else
     advect_rhs2_impl<FluxScheme::Superbee>(a, b, uf, vf, rhs_a, rhs_b, nx, ny, dx);
-}
-
-void axpy_interior(CView q, CView k, double c, View out, int nx, int ny) {
-  parallel_rows(0, ny, [&](int j) {
-    const double* qr = &q(0, j);
-    const double* kr = &k(0, j);
-    double* o = &out(0, j);
-#pragma omp simd
-    for (int i = 0; i < nx; ++i) o[i] = qr[i] + c * kr[i];
-  });
-}
-
-void rk4_combine(View q, CView k1, CView k2, CView k3, CView k4, double dt, int nx, int ny) {
-  const double c = dt / 6.0;
-  parallel_rows(0, ny, [&](int j) {
-    double* qr = &q(0, j);
-    const double *a = &k1(0, j), *b = &k2(0, j), *d = &k3(0, j), *e = &k4(0, j);
-#pragma omp simd
-    for (int i = 0; i < nx; ++i) qr[i] += c * (a[i] + 2.0 * b[i] + 2.0 * d[i] + e[i]);
-  });
 }
 
 }  // namespace refmap

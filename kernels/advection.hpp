@@ -40,10 +40,4 @@ inline double superbee_face(double quu, double qu, double qd) {
 void advect_rhs2(CView a, CView b, CView uf, CView vf, View rhs_a, View rhs_b, int nx, int ny,
                  double dx, FluxScheme scheme);
 
-/// out = q + c * k over the interior (RK stage combination).
-void axpy_interior(CView q, CView k, double c, View out, int nx, int ny);
-
-/// q += c1*k1 + c2*k2 + c3*k3 + c4*k4 over the interior (RK-4 final combination).
-void rk4_combine(View q, CView k1, CView k2, CView k3, CView k4, double dt, int nx, int ny);
-
 }  // namespace refmap

@@ -8,6 +8,8 @@
 #include <immintrin.h>
 #endif
 
+#include "kernels/loop.hpp"
+
 namespace refmap {
 
 namespace {
@@ -260,13 +262,11 @@ ExtrapStats extrapolate_lsq(View xi_x, View xi_y, View2<std::uint8_t> known, int
     const long n = long(w.cand.size());
     if (n == 0) break;
     w.val.resize(std::size_t(2 * n));
-    long nfb = 0;
     const LsqWorkspace::Cell* cand = w.cand.data();
     double* val = w.val.data();
-#pragma omp parallel for schedule(static) reduction(+ : nfb) if (n >= opt.parallel_min)
-    for (long c = 0; c < n; ++c) {
-      nfb += fit_cell(cand[c].i, cand[c].j, cx, cy, kc, d, stencil, val[2 * c], val[2 * c + 1]);
-    }
+    const long nfb = parallel_items_count(n >= opt.parallel_min ? omp_get_max_threads() : 1, n, [&](long c) {
+      return long(fit_cell(cand[c].i, cand[c].j, cx, cy, kc, d, stencil, val[2 * c], val[2 * c + 1]));
+    });
     for (long c = 0; c < n; ++c) {
       const int i = cand[c].i, j = cand[c].j;
       xi_x(i, j) = val[2 * c];

@@ -1,11 +1,11 @@
 #include "kernels/extrapolate_pde.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+
+#include "kernels/loop.hpp"
 
 namespace refmap {
 
@@ -60,25 +60,23 @@ int jacobi(const std::vector<Row>& rows, std::vector<double>& q, std::vector<dou
     }
   } else {
     double part[kMaxT * 8];
-#pragma omp parallel num_threads(nth)
-    {
-      const int t = omp_get_thread_num(), T = omp_get_num_threads();
+    team_region(nth, [&](const Team& tm) {
+      const int t = tm.t, T = tm.nt;
       const long lo = n * t / T, hi = n * (t + 1) / T;
       while (true) {
         part[8 * t] = sweep(a, b, lo, hi);
-#pragma omp barrier
-#pragma omp single
-        {
+        tm.barrier();
+        tm.single([&] {
           double mm = 0.0;
           for (int k = 0; k < T; ++k) mm = std::max(mm, part[8 * k]);
           chg = mm;
           ++it;
           std::swap(a, b);
           done = !(mm > tol_abs) || it >= max_iter;
-        }
+        });
         if (done) break;
       }
-    }
+    });
   }
   if (a != q.data()) q.swap(q2);
   last_change = chg;

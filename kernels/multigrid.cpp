@@ -1,24 +1,20 @@
 // Stateless OpenMP stencil kernels for the multigrid / CG Poisson solvers; see multigrid.hpp.
 #include "kernels/multigrid.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
 #include <utility>
 
+#include "kernels/loop.hpp"
+#include "kernels/stencil5.hpp"
+
 namespace refmap::mg {
 
 namespace {
 
 inline std::size_t round8(std::size_t n) { return (n + 7) / 8 * 8; }
-
-/// Team size: never more threads than rows (every thread then owns >= 1 row).
-inline int team(int want, int rows) { return std::max(1, std::min(want, rows)); }
-
-inline int chunk_lo(int n, int nt, int t) { return int((long long)n * t / nt); }
 
 /// Copy the periodic ghost rows (including ghost columns): row -1 <- ny-1, row ny <- 0.
 inline void copy_ghost_rows(const Stencil& s, View x) {
@@ -50,8 +46,8 @@ __attribute__((noinline)) void rb_row_kernel(double* xr, const double* __restric
                                              double omega) {
 #pragma omp simd
   for (int i = par; i < nx; i += 2) {
-    const double g =
-        (t[i] * xr[i - 1] + t[i + 1] * xr[i + 1] + ts[i] * xs[i] + tn[i] * xn[i] - fr[i]) * id[i];
+    const double g = stencil5_relax(t[i], t[i + 1], ts[i], tn[i], xr[i - 1], xr[i + 1], xs[i], xn[i],
+                                    fr[i], id[i]);
     xr[i] += omega * (g - xr[i]);
   }
 }
@@ -76,11 +72,8 @@ inline void residual_row(const Stencil& s, CView x, CView f, int j, double* __re
   const double* tn = &s.ty(0, j + 1);
   const int nx = s.nx;
 #pragma omp simd
-  for (int i = 0; i < nx; ++i) {
-    const double c = xr[i];
-    out[i] = fr[i] - (t[i] * (xr[i - 1] - c) + t[i + 1] * (xr[i + 1] - c) + ts[i] * (xs[i] - c) +
-                      tn[i] * (xn[i] - c));
-  }
+  for (int i = 0; i < nx; ++i)
+    out[i] = fr[i] - stencil5_apply(t[i], t[i + 1], ts[i], tn[i], xr[i - 1], xr[i + 1], xs[i], xn[i], xr[i]);
 }
 
 /// out[I] = sum_i P(i, I) rr[i]  (x-direction restriction of one row).
@@ -289,9 +282,8 @@ inline double residual_row_norm2(const Stencil& s, CView x, CView f, int j) {
   double a = 0.0;
 #pragma omp simd reduction(+ : a)
   for (int i = 0; i < nx; ++i) {
-    const double c = xr[i];
-    const double v = fr[i] - (t[i] * (xr[i - 1] - c) + t[i + 1] * (xr[i + 1] - c) +
-                              ts[i] * (xs[i] - c) + tn[i] * (xn[i] - c));
+    const double v =
+        fr[i] - stencil5_apply(t[i], t[i + 1], ts[i], tn[i], xr[i - 1], xr[i + 1], xs[i], xn[i], xr[i]);
     a += v * v;
   }
   return a;
@@ -400,7 +392,8 @@ struct RestrictStream {
 /// chunk boundary b (stage k: [b - k, b + k)) form a "valley" which thread t finishes after
 /// a barrier, stage by stage. The coarse rows of pout that need fine residual rows of a
 /// valley are then computed by the thread of that valley, recomputing the residual rows
-/// they need. Needs chunks of >= 2 * stages + 8 rows.
+/// they need. Needs chunks of >= 2 * stages + 8 rows. ||f - L x||^2 is summed from one
+/// partial per row in row order (kernels/loop.hpp: same bits for any team size).
 struct PipeIn {
   const Transfer1D* trx;
   const Transfer1D* try_;
@@ -420,15 +413,14 @@ void rbgs_pipeline_walls(const Stencil& s, View x, CView f, int sweeps, int c1, 
   const int kres = k0 + S;                   // residual stage (if any)
   const bool tail = res2 || pout;
   const int stages = kres + (tail ? 1 : 0);
-  int want = team(s.threads, ny / (2 * stages + 8));
+  int want = team_size(s.threads, ny / (2 * stages + 8));
   if (sc) want = std::min(want, sc->nthreads);
-  const int nt_want = want;
-  double acc = 0.0;
-#pragma omp parallel num_threads(nt_want) if (nt_want > 1) reduction(+ : acc)
-  {
-    const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-    const int j0 = chunk_lo(ny, nt, t), j1 = chunk_lo(ny, nt, t + 1);
-    const bool first = t == 0, last = t == nt - 1;
+  RowPartials rows2(res2 ? std::size_t(ny) : 0);  // ||f - L x||^2 of each row
+  double* r2 = rows2.data();
+  team_region(want, [&](const Team& tm) {
+    const int nt = tm.nt, t = tm.t;
+    const auto [j0, j1] = tm.rows(ny);
+    const bool first = tm.first(), last = tm.last();
     const int jend = last ? j1 + stages - 1 : j1;
     double* tmp = nullptr;
     RestrictStream rs;
@@ -446,7 +438,7 @@ void rbgs_pipeline_walls(const Stencil& s, View x, CView f, int sweeps, int c1, 
         rb_row(s, x, f, r, (c1 + k - k0) & 1, omega);
       else {
         if (pout) rs.push(r);
-        if (res2) acc += residual_row_norm2(s, x, f, r);
+        if (res2) r2[r] = residual_row_norm2(s, x, f, r);
       }
     };
     for (int j = j0; j < jend; ++j)
@@ -457,12 +449,12 @@ void rbgs_pipeline_walls(const Stencil& s, View x, CView f, int sweeps, int c1, 
         stage(k, r);
       }
     if (nt > 1) {
-#pragma omp barrier
+      tm.barrier();
       if (!last) {
         for (int k = 1; k < kres; ++k)  // stage 0 (prolongation or first sweep) has no valley
           for (int r = j1 - k; r < j1 + k; ++r) rb_row(s, x, f, r, (c1 + k - k0) & 1, omega);
         if (res2)
-          for (int r = j1 - kres; r < j1 + kres; ++r) acc += residual_row_norm2(s, x, f, r);
+          for (int r = j1 - kres; r < j1 + kres; ++r) r2[r] = residual_row_norm2(s, x, f, r);
         if (pout) {
           // coarse rows touching the fine residual rows [j1 - kres, j1 + kres) that no
           // thread's pipelined pass covered
@@ -486,8 +478,8 @@ void rbgs_pipeline_walls(const Stencil& s, View x, CView f, int sweeps, int c1, 
         }
       }
     }
-  }
-  if (res2) *res2 = acc;
+  });
+  if (res2) *res2 = rows2.sum(std::size_t(ny));
 }
 
 }  // namespace
@@ -505,11 +497,8 @@ void smooth_rbgs(const Stencil& s, View x, CView f, int sweeps, bool black_first
   }
   // periodic in y: one sweep per pass, the wrap rows finished after a barrier with the
   // ghost rows refreshed in between
-  const int nt_want = team(s.threads, s.ny);
-#pragma omp parallel num_threads(nt_want) if (nt_want > 1)
-  {
-    const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-    const int j0 = chunk_lo(s.ny, nt, t), j1 = chunk_lo(s.ny, nt, t + 1);
+  team_region(team_size(s.threads, s.ny), [&](const Team& tm) {
+    const auto [j0, j1] = tm.rows(s.ny);
     for (int sw = 0; sw < sweeps; ++sw) {
       // phase 1: first colour on every row, second colour trailing one row behind on the
       // rows whose three first-colour neighbours rows are all owned by this thread
@@ -517,19 +506,17 @@ void smooth_rbgs(const Stencil& s, View x, CView f, int sweeps, bool black_first
         rb_row(s, x, f, j, c1, omega);
         if (j - 1 > j0) rb_row(s, x, f, j - 1, c2, omega);
       }
-#pragma omp barrier
-#pragma omp single
-      copy_ghost_rows(s, x);
+      tm.barrier();
+      tm.single([&] { copy_ghost_rows(s, x); });
       // phase 2: second colour on the two chunk-boundary rows
       if (j1 > j0) {
         rb_row(s, x, f, j0, c2, omega);
         if (j1 - 1 > j0) rb_row(s, x, f, j1 - 1, c2, omega);
       }
-#pragma omp barrier
-#pragma omp single
-      copy_ghost_rows(s, x);
+      tm.barrier();
+      tm.single([&] { copy_ghost_rows(s, x); });
     }
-  }
+  });
   if (res2) *res2 = residual(s, x, f, View{});
 }
 
@@ -562,12 +549,10 @@ void smooth_jacobi(const Stencil& s, View x, CView f, int sweeps, double omega,
   if (sweeps <= 0) return;
   const int nx = s.nx, ny = s.ny;
   const std::size_t W = round8(nx + 2);
-  const int nt_want = team(std::min(s.threads, sc.nthreads), ny);
   const std::size_t bytes = sizeof(double) * std::size_t(nx + 2);
-#pragma omp parallel num_threads(nt_want) if (nt_want > 1)
-  {
-    const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-    const int j0 = chunk_lo(ny, nt, t), j1 = chunk_lo(ny, nt, t + 1);
+  team_region(team_size(std::min(s.threads, sc.nthreads), ny), [&](const Team& tm) {
+    const int nt = tm.nt, t = tm.t;
+    const auto [j0, j1] = tm.rows(ny);
     double* base = sc.thread(t);
     double* bufA = base + 1;
     double* bufB = base + W + 1;
@@ -576,7 +561,7 @@ void smooth_jacobi(const Stencil& s, View x, CView f, int sweeps, double omega,
     for (int sw = 0; sw < sweeps; ++sw) {
       std::memcpy(first - 1, &x(-1, j0), bytes);
       std::memcpy(last - 1, &x(-1, j1 - 1), bytes);
-#pragma omp barrier
+      tm.barrier();
       const double* prev = (t == 0) ? &x(0, -1) : sc.thread(t - 1) + 3 * W + 1;
       double* keep = bufA;
       double* spare = bufB;
@@ -594,42 +579,32 @@ void smooth_jacobi(const Stencil& s, View x, CView f, int sweeps, double omega,
 #pragma omp simd
         for (int i = 0; i < nx; ++i) {
           const double g =
-              (tt[i] * c[i - 1] + tt[i + 1] * c[i + 1] + ts[i] * prev[i] + tn[i] * next[i] - fr[i]) *
-              id[i];
+              stencil5_relax(tt[i], tt[i + 1], ts[i], tn[i], c[i - 1], c[i + 1], prev[i], next[i], fr[i], id[i]);
           xr[i] = c[i] + omega * (g - c[i]);
         }
         ghost_cols(s, xr);
         prev = keep;
         std::swap(keep, spare);
       }
-#pragma omp barrier
-      if (s.sides.periodic_y()) {
-#pragma omp single
-        copy_ghost_rows(s, x);
-      }
+      tm.barrier();
+      if (s.sides.periodic_y()) tm.single([&] { copy_ghost_rows(s, x); });
     }
-  }
+  });
 }
 
 double residual(const Stencil& s, CView x, CView f, View r) {
   const int nx = s.nx, ny = s.ny;
-  const int nt = team(s.threads, ny);
-  double acc = 0.0;
-  if (r.p) {
-#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
-    for (int j = 0; j < ny; ++j) {
+  if (r.p)
+    return parallel_rows_sum_on(s.threads, 0, ny, [&](int j) {
       double* rr = &r(0, j);
       residual_row(s, x, f, j, rr);
       double a = 0.0;
 #pragma omp simd reduction(+ : a)
       for (int i = 0; i < nx; ++i) a += rr[i] * rr[i];
-      acc += a;
-    }
-  } else {
-#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
-    for (int j = 0; j < ny; ++j) acc += residual_row_norm2(s, x, f, j);
-  }
-  return acc;
+      return a;
+    });
+  return parallel_rows_sum_on(s.threads, 0, ny,
+                              [&](int j) { return residual_row_norm2(s, x, f, j); });
 }
 
 void residual_restrict(const Stencil& s, CView x, CView f, const Transfer1D& trx,
@@ -638,12 +613,9 @@ void residual_restrict(const Stencil& s, CView x, CView f, const Transfer1D& trx
   constexpr int S = 8;  // cached x-restricted residual rows per thread
   const int ncx = trx.nc, ncy = try_.nc;
   const std::size_t rowW = round8(s.nx), slotW = round8(ncx);
-  const int nt_want = team(std::min(s.threads, sc.nthreads), ncy);
-#pragma omp parallel num_threads(nt_want) if (nt_want > 1)
-  {
-    const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-    const int J0 = chunk_lo(ncy, nt, t), J1 = chunk_lo(ncy, nt, t + 1);
-    double* rrow = sc.thread(t);
+  team_region(team_size(std::min(s.threads, sc.nthreads), ncy), [&](const Team& tm) {
+    const auto [J0, J1] = tm.rows(ncy);
+    double* rrow = sc.thread(tm.t);
     double* slots = rrow + rowW;
     int tags[S];
     for (int k = 0; k < S; ++k) tags[k] = -1;
@@ -670,83 +642,69 @@ void residual_restrict(const Stencil& s, CView x, CView f, const Transfer1D& trx
         for (int I = 0; I < ncx; ++I) out[I] += w * src[I];
       }
     }
-  }
+  });
 }
 
 void prolong_add(const Stencil& fs, const Transfer1D& trx, const Transfer1D& try_, CView xc,
                  View xf, const Scratch& sc) {
-  const int nt_want = team(std::min(fs.threads, sc.nthreads), fs.ny);
-#pragma omp parallel num_threads(nt_want) if (nt_want > 1)
-  {
-    const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-    const int j0 = chunk_lo(fs.ny, nt, t), j1 = chunk_lo(fs.ny, nt, t + 1);
-    double* __restrict tmp = sc.thread(t);
+  team_region(team_size(std::min(fs.threads, sc.nthreads), fs.ny), [&](const Team& tm) {
+    const auto [j0, j1] = tm.rows(fs.ny);
+    double* __restrict tmp = sc.thread(tm.t);
     for (int j = j0; j < j1; ++j) prolong_fine_row(fs, trx, try_, xc, xf, j, tmp);
     if (fs.sides.periodic_y()) {
-#pragma omp barrier
-#pragma omp single
-      copy_ghost_rows(fs, xf);
+      tm.barrier();
+      tm.single([&] { copy_ghost_rows(fs, xf); });
     }
-  }
+  });
 }
 
 // ------------------------------------------------------------------------------------------
 double sum(const Stencil& s, CView a) {
-  const int nt = team(s.threads, s.ny), nx = s.nx;
-  double acc = 0.0;
-#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
-  for (int j = 0; j < s.ny; ++j) {
+  const int nx = s.nx;
+  return parallel_rows_sum_on(s.threads, 0, s.ny, [&](int j) {
     const double* ar = &a(0, j);
     double v = 0.0;
 #pragma omp simd reduction(+ : v)
     for (int i = 0; i < nx; ++i) v += ar[i];
-    acc += v;
-  }
-  return acc;
+    return v;
+  });
 }
 
 double dot(const Stencil& s, CView a, CView b) {
-  const int nt = team(s.threads, s.ny), nx = s.nx;
-  double acc = 0.0;
-#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
-  for (int j = 0; j < s.ny; ++j) {
+  const int nx = s.nx;
+  return parallel_rows_sum_on(s.threads, 0, s.ny, [&](int j) {
     const double* ar = &a(0, j);
     const double* br = &b(0, j);
     double v = 0.0;
 #pragma omp simd reduction(+ : v)
     for (int i = 0; i < nx; ++i) v += ar[i] * br[i];
-    acc += v;
-  }
-  return acc;
+    return v;
+  });
 }
 
 void fill(const Stencil& s, View a, double v) {
-  const int nt = team(s.threads, s.ny), nx = s.nx;
-#pragma omp parallel for schedule(static) num_threads(nt) if (nt > 1)
-  for (int j = 0; j < s.ny; ++j) {
+  const int nx = s.nx;
+  parallel_rows_on(s.threads, 0, s.ny, [&](int j) {
     double* ar = &a(0, j);
 #pragma omp simd
     for (int i = 0; i < nx; ++i) ar[i] = v;
-  }
+  });
 }
 
 void fill_all(Field& a, double v) { a.fill(v); }
 
 void add_scalar(const Stencil& s, View a, double v) {
-  const int nt = team(s.threads, s.ny), nx = s.nx;
-#pragma omp parallel for schedule(static) num_threads(nt) if (nt > 1)
-  for (int j = 0; j < s.ny; ++j) {
+  const int nx = s.nx;
+  parallel_rows_on(s.threads, 0, s.ny, [&](int j) {
     double* ar = &a(0, j);
 #pragma omp simd
     for (int i = 0; i < nx; ++i) ar[i] += v;
-  }
+  });
 }
 
 double shift_scale(const Stencil& s, CView in, double shift, double scale, View out) {
-  const int nt = team(s.threads, s.ny), nx = s.nx;
-  double acc = 0.0;
-#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
-  for (int j = 0; j < s.ny; ++j) {
+  const int nx = s.nx;
+  return parallel_rows_sum_on(s.threads, 0, s.ny, [&](int j) {
     const double* ir = &in(0, j);
     double* orow = &out(0, j);
     double v = 0.0;
@@ -756,17 +714,14 @@ double shift_scale(const Stencil& s, CView in, double shift, double scale, View 
       orow[i] = o;
       v += o * o;
     }
-    acc += v;
-  }
-  return acc;
+    return v;
+  });
 }
 
 // ------------------------------------------------------------------------------------------
 double apply_dot(const Stencil& s, CView p, View q) {
-  const int nt = team(s.threads, s.ny), nx = s.nx;
-  double acc = 0.0;
-#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
-  for (int j = 0; j < s.ny; ++j) {
+  const int nx = s.nx;
+  return parallel_rows_sum_on(s.threads, 0, s.ny, [&](int j) {
     const double* pr = &p(0, j);
     const double* ps = &p(0, j - 1);
     const double* pn = &p(0, j + 1);
@@ -778,21 +733,17 @@ double apply_dot(const Stencil& s, CView p, View q) {
 #pragma omp simd reduction(+ : v)
     for (int i = 0; i < nx; ++i) {
       const double c = pr[i];
-      const double l = t[i] * (pr[i - 1] - c) + t[i + 1] * (pr[i + 1] - c) + ts[i] * (ps[i] - c) +
-                       tn[i] * (pn[i] - c);
+      const double l = stencil5_apply(t[i], t[i + 1], ts[i], tn[i], pr[i - 1], pr[i + 1], ps[i], pn[i], c);
       qr[i] = l;
       v += c * l;
     }
-    acc += v;
-  }
-  return acc;
+    return v;
+  });
 }
 
 double cg_update(const Stencil& s, double alpha, View x, CView p, View r, CView q) {
-  const int nt = team(s.threads, s.ny), nx = s.nx;
-  double acc = 0.0;
-#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
-  for (int j = 0; j < s.ny; ++j) {
+  const int nx = s.nx;
+  return parallel_rows_sum_on(s.threads, 0, s.ny, [&](int j) {
     double* __restrict xr = &x(0, j);
     double* __restrict rr = &r(0, j);
     const double* __restrict pr = &p(0, j);
@@ -805,17 +756,14 @@ double cg_update(const Stencil& s, double alpha, View x, CView p, View r, CView 
       rr[i] = rn;
       v += rn * rn;
     }
-    acc += v;
-  }
-  return acc;
+    return v;
+  });
 }
 
 double cg_update_jacobi(const Stencil& s, double alpha, View x, CView p, View r, CView q,
                         double& rz) {
-  const int nt = team(s.threads, s.ny), nx = s.nx;
-  double acc = 0.0, acc_rz = 0.0;
-#pragma omp parallel for reduction(+ : acc, acc_rz) schedule(static) num_threads(nt) if (nt > 1)
-  for (int j = 0; j < s.ny; ++j) {
+  const int nx = s.nx;
+  const auto acc = parallel_rows_sums_on<2>(s.threads, 0, s.ny, [&](int j) {
     double* __restrict xr = &x(0, j);
     double* __restrict rr = &r(0, j);
     const double* __restrict pr = &p(0, j);
@@ -830,17 +778,15 @@ double cg_update_jacobi(const Stencil& s, double alpha, View x, CView p, View r,
       v += rn * rn;
       w -= rn * rn * id[i];
     }
-    acc += v;
-    acc_rz += w;
-  }
-  rz = acc_rz;
-  return acc;
+    return std::array<double, 2>{v, w};
+  });
+  rz = acc[1];
+  return acc[0];
 }
 
 void cg_direction(const Stencil& s, CView z, double beta, View p) {
-  const int nt = team(s.threads, s.ny), nx = s.nx;
-#pragma omp parallel for schedule(static) num_threads(nt) if (nt > 1)
-  for (int j = 0; j < s.ny; ++j) {
+  const int nx = s.nx;
+  parallel_rows_on(s.threads, 0, s.ny, [&](int j) {
     const double* __restrict zr = &z(0, j);
     double* __restrict pr = &p(0, j);
     if (beta == 0.0) {  // first direction: p may hold anything
@@ -851,29 +797,26 @@ void cg_direction(const Stencil& s, CView z, double beta, View p) {
       for (int i = 0; i < nx; ++i) pr[i] = zr[i] + beta * pr[i];
     }
     ghost_cols(s, pr);
-  }
+  });
   if (s.sides.periodic_y()) copy_ghost_rows(s, p);
 }
 
 void cg_direction_jacobi(const Stencil& s, CView r, double beta, View p) {
-  const int nt = team(s.threads, s.ny), nx = s.nx;
-#pragma omp parallel for schedule(static) num_threads(nt) if (nt > 1)
-  for (int j = 0; j < s.ny; ++j) {
+  const int nx = s.nx;
+  parallel_rows_on(s.threads, 0, s.ny, [&](int j) {
     const double* __restrict rr = &r(0, j);
     const double* __restrict id = &s.invd(0, j);
     double* __restrict pr = &p(0, j);
 #pragma omp simd
     for (int i = 0; i < nx; ++i) pr[i] = -id[i] * rr[i] + beta * pr[i];
     ghost_cols(s, pr);
-  }
+  });
   if (s.sides.periodic_y()) copy_ghost_rows(s, p);
 }
 
 double jacobi_precondition(const Stencil& s, CView r, View z) {
-  const int nt = team(s.threads, s.ny), nx = s.nx;
-  double acc = 0.0;
-#pragma omp parallel for reduction(+ : acc) schedule(static) num_threads(nt) if (nt > 1)
-  for (int j = 0; j < s.ny; ++j) {
+  const int nx = s.nx;
+  return parallel_rows_sum_on(s.threads, 0, s.ny, [&](int j) {
     const double* __restrict rr = &r(0, j);
     const double* __restrict id = &s.invd(0, j);
     double* __restrict zr = &z(0, j);
@@ -884,9 +827,8 @@ double jacobi_precondition(const Stencil& s, CView r, View z) {
       zr[i] = zz;
       v += rr[i] * zz;
     }
-    acc += v;
-  }
-  return acc;
+    return v;
+  });
 }
 
 }  // namespace refmap::mg

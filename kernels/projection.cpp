@@ -7,7 +7,7 @@
 namespace refmap {
 
 void face_beta(CView rho, View bx, View by, int nx, int ny, Sides sides) {
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     const double* __restrict r = &rho(0, j);
     double* __restrict b = &bx(0, j);
 #pragma omp simd
@@ -21,7 +21,7 @@ void face_beta(CView rho, View bx, View by, int nx, int ny, Sides sides) {
       case FaceKind::Periodic: bx(nx, j) = bx(0, j); break;  // face nx is face 0
     }
   });
-  parallel_rows(0, ny + 1, [&](int j) {
+  parallel_rows(0, ny + 1, nx, [&](int j) {
     int jj = j;  // the face row computed
     if (j == 0 || j == ny) {
       switch (sides[j == 0 ? Bottom : Top]) {
@@ -42,7 +42,7 @@ void face_beta(CView rho, View bx, View by, int nx, int ny, Sides sides) {
 void face_accel(CView p, CView bx, CView by, View gx_f, View gy_f, int nx, int ny, double dx,
                 double gx, double gy, double rho_ref, Sides sides) {
   const double inv = 1.0 / dx;
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     {
       const double* __restrict br = &bx(0, j);
       const double* __restrict pr = &p(0, j);
@@ -66,7 +66,7 @@ void face_accel(CView p, CView bx, CView by, View gx_f, View gy_f, int nx, int n
       case FaceKind::Periodic: gx_f(nx, j) = gx_f(0, j); break;  // face nx is face 0
     }
   });
-  parallel_rows(0, ny + 1, [&](int j) {
+  parallel_rows(0, ny + 1, nx, [&](int j) {
     int jj = j;  // the face row computed
     if (j == 0 || j == ny) {
       switch (sides[j == 0 ? Bottom : Top]) {
@@ -90,7 +90,7 @@ void face_accel(CView p, CView bx, CView by, View gx_f, View gy_f, int nx, int n
 
 void predict_face_velocity(CView u, CView v, CView gx_f, CView gy_f, View uf, View vf, int nx,
                            int ny, double dt, Sides sides) {
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     {
       const double* __restrict ur = &u(0, j);
       const double* __restrict g = &gx_f(0, j);
@@ -107,7 +107,7 @@ void predict_face_velocity(CView u, CView v, CView gx_f, CView gy_f, View uf, Vi
       case FaceKind::Periodic: uf(nx, j) = uf(0, j); break;  // face nx is face 0
     }
   });
-  parallel_rows(0, ny + 1, [&](int j) {
+  parallel_rows(0, ny + 1, nx, [&](int j) {
     int jj = j;  // the face row computed
     if (j == 0 || j == ny) {
       switch (sides[j == 0 ? Bottom : Top]) {
@@ -128,7 +128,7 @@ void predict_face_velocity(CView u, CView v, CView gx_f, CView gy_f, View uf, Vi
 
 void face_divergence(CView uf, CView vf, View out, int nx, int ny, double dx, double scale) {
   const double s = scale / dx;
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     const double* ul = &uf(0, j);
     const double* vb = &vf(0, j);
     const double* vt = &vf(0, j + 1);
@@ -140,7 +140,7 @@ void face_divergence(CView uf, CView vf, View out, int nx, int ny, double dx, do
 
 double max_abs_face_divergence(CView uf, CView vf, int nx, int ny, double dx) {
   const double s = 1.0 / dx;
-  return parallel_rows_max(0, ny, [&](int j) {
+  return parallel_rows_max(0, ny, nx, [&](int j) {
     double m = 0.0;
     for (int i = 0; i < nx; ++i) {
       const double d = std::abs(s * (uf(i + 1, j) - uf(i, j) + vf(i, j + 1) - vf(i, j)));
@@ -154,7 +154,7 @@ double max_abs_face_divergence(CView uf, CView vf, int nx, int ny, double dx) {
 void correct_face_velocity(View uf, View vf, CView dp, CView bx, CView by, int nx, int ny,
                            double dx, double dt, Sides sides) {
   const double c = dt / dx;
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     {
       const double* __restrict b = &bx(0, j);
       const double* __restrict d = &dp(0, j);
@@ -171,7 +171,7 @@ void correct_face_velocity(View uf, View vf, CView dp, CView bx, CView by, int n
       case FaceKind::Periodic: uf(nx, j) = uf(0, j); break;  // face nx is face 0
     }
   });
-  parallel_rows(0, ny + 1, [&](int j) {
+  parallel_rows(0, ny + 1, nx, [&](int j) {
     if (j == 0 || j == ny) {
       switch (sides[j == 0 ? Bottom : Top]) {
         case FaceKind::Wall: return;
@@ -197,7 +197,7 @@ void correct_face_velocity(View uf, View vf, CView dp, CView bx, CView by, int n
 
 void correct_cell_velocity(View u, View v, CView gx_f, CView gy_f, int nx, int ny, double dt) {
   const double c = 0.5 * dt;
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     double* ur = &u(0, j);
     double* vr = &v(0, j);
     const double* gx = &gx_f(0, j);

@@ -35,7 +35,7 @@ void rhs_impl(CView xi_x, CView xi_y, CView phi, CView uf, CView vf, int ni, int
       return f - qc;
     }
   };
-  parallel_rows(0, nj, [&](int j) {
+  parallel_rows(0, nj, ni, [&](int j) {
     for (int i = 0; i < ni; ++i) {
       if (!(phi(i, j) < 0.0)) {  // H = 0 outside Omega_S, eq. (3.4)
         kx(i, j) = 0.0;

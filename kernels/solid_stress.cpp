@@ -7,7 +7,7 @@ namespace refmap {
 void blend_stress_divergence(CView sxx, CView sxy, CView syy, CView phi, int ni, int nj,
                              double dx, double w_t, View fx, View fy, int i0, int j0) {
   const double inv2 = 0.5 / dx;
-  parallel_rows(0, nj, [&](int j) {
+  parallel_rows(0, nj, ni, [&](int j) {
     for (int i = 0; i < ni; ++i) {
       const double ph = phi(i, j);
       if (ph >= w_t) continue;
@@ -23,7 +23,7 @@ void blend_stress_divergence(CView sxx, CView sxy, CView syy, CView phi, int ni,
 void add_stress_divergence(CView sxx, CView sxy, CView syy, View fx, View fy, int nx, int ny,
                            double dx) {
   const double inv2 = 0.5 / dx;
-  parallel_rows(0, ny, [=](int j) {
+  parallel_rows(0, ny, nx, [=](int j) {
     // restrict-qualified row pointers so that the loop vectorises
     const double* __restrict xx = &sxx(0, j);
     const double* __restrict xys = &sxy(0, j - 1);

@@ -81,7 +81,7 @@ template <ConstitutiveModel M>
 void cell_stress(const M& model, CView xi_x, CView xi_y, CView phi, int ni, int nj, double dx,
                  double phi_max, View sxx, View sxy, View syy) {
   const double inv2 = 0.5 / dx;
-  parallel_rows(0, nj, [=](int j) {
+  parallel_rows(0, nj, ni, [=](int j) {
     // restrict-qualified row pointers and a select instead of a branch, so that the loop
     // vectorises; cells with phi >= phi_max are computed too (from whatever xi holds there,
     // possibly stale) and then discarded by the select
@@ -114,7 +114,7 @@ void cell_stress(const M& model, CView xi_x, CView xi_y, CView phi, int ni, int 
 template <ConstitutiveModel M>
 double blend_stress(const M& model, CView sxx, CView sxy, CView syy, CView phi, int ni, int nj,
                     double dx, double w_t, View gxx, View gxy, View gyy, int i0, int j0) {
-  const double e = parallel_rows_sum(0, nj, [&](int j) {
+  const double e = parallel_rows_sum(0, nj, ni, [&](int j) {
     double en = 0.0;
     for (int i = 0; i < ni; ++i) {
       const double ph = phi(i, j);
@@ -179,7 +179,7 @@ void add_face_stress_force(const M& model, CView xi_x, CView xi_y, CView phi, in
                            int j0) {
   const double inv = 1.0 / dx;
   const double cut = w_t + 2.0 * dx;  // (1 - H) vanishes beyond w_t; margin for the faces
-  parallel_rows(0, nj, [&](int j) {
+  parallel_rows(0, nj, ni, [&](int j) {
     for (int i = 0; i < ni; ++i) {
       const double ph = phi(i, j);
       if (!(ph < cut)) continue;

@@ -7,7 +7,7 @@ namespace refmap {
 void viscous_force(CView u, CView v, CView mu, View fx, View fy, int nx, int ny, double dx) {
   const double inv = 1.0 / dx;
   const double inv2 = inv * inv;
-  parallel_rows(0, ny, [=](int j) {
+  parallel_rows(0, ny, nx, [=](int j) {
     // restrict-qualified row pointers so that the loop vectorises
     const double* __restrict us = &u(0, j - 1);
     const double* __restrict uc = &u(0, j);
@@ -46,7 +46,7 @@ void viscous_force(CView u, CView v, CView mu, View fx, View fy, int nx, int ny,
 }
 
 void apply_force(View u, View v, CView fx, CView fy, CView rho, double dt, int nx, int ny) {
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     double* ur = &u(0, j);
     double* vr = &v(0, j);
     const double *a = &fx(0, j), *b = &fy(0, j), *r = &rho(0, j);

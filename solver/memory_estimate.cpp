@@ -41,10 +41,10 @@ MemoryEstimate estimate_memory(const Config& cfg) {
   MemoryEstimate m;
   bool elastic = false;
   for (const SolidSpec& s : cfg.solids) elastic = elastic || s.mu_s > 0.0;
-  // Simulation: 16 state/work cell fields + 6 RK-4 stage fields; 3 x-face and 3 y-face
+  // Simulation: 16 state/work cell fields + 2 RK-4 stage fields; 3 x-face and 3 y-face
   // fields; the blended stress (3 cell fields) with elastic solids; the contact force
   // (1 x-face, 1 y-face) with solids
-  m.fields = 22 * cell + 3 * (xface + yface);
+  m.fields = 18 * cell + 3 * (xface + yface);
   if (elastic) m.fields += 3 * cell;
   if (!cfg.solids.empty()) m.fields += xface + yface;
   // Poisson: multigrid keeps the finest operator (tx, ty, invd), the scaled right-hand

@@ -3,10 +3,10 @@
 
 #include "solver/option_names.hpp"
 
-#include <omp.h>
-
 #include <cmath>
 #include <stdexcept>
+
+#include "kernels/loop.hpp"
 
 namespace refmap {
 
@@ -45,7 +45,7 @@ void CGSolver::setup(const PoissonOperator& op) {
 
 SolveStats CGSolver::solve(const Field& rhs, Field& x) {
   if (!ready_) throw std::logic_error("cg: solve() before setup()");
-  threads_ = op_.grid.cells() >= kMultigridMinParallelCells ? omp_get_max_threads() : 1;
+  threads_ = loop_threads(op_.grid.cells(), op_.grid.ny);
   const mg::Stencil s = stencil();
   SolveStats st;
   const double bnorm = detail::prepare_rhs(op_, s, rhs, x, f_.view());

@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "kernels/loop.hpp"
+
 namespace refmap {
 
 namespace {
@@ -33,12 +35,12 @@ inline double face_dist(const std::vector<double>& c, double length, int e) {
 
 void compute_invd(const mg::Stencil& s, Field& invd) {
   const int nx = s.nx, ny = s.ny;
-#pragma omp parallel for schedule(static) if (std::size_t(nx) * ny >= kMultigridMinParallelCells)
-  for (int j = 0; j < ny; ++j)
+  parallel_rows(0, ny, nx, [&](int j) {
     for (int i = 0; i < nx; ++i) {
       const double d = s.tx(i, j) + s.tx(i + 1, j) + s.ty(i, j) + s.ty(i, j + 1);
       invd(i, j) = d > 0 ? 1.0 / d : 0.0;
     }
+  });
 }
 
 /// Rediscretised coarse coefficients. The coarse face beta is the mean of the fine-face
@@ -52,9 +54,7 @@ void compute_invd(const mg::Stencil& s, Field& invd) {
 /// ratios but lets the V-cycle diverge at ratio 1000 on 1024^2 and with Jacobi smoothing.)
 void coarsen_operator(const MultigridHierarchy::Level& F, MultigridHierarchy::Level& C) {
   constexpr int K = mg::Transfer1D::K;
-  const bool par = std::size_t(C.nx) * C.ny >= kMultigridMinParallelCells;
-#pragma omp parallel for schedule(static) if (par)
-  for (int J = 0; J < C.ny; ++J) {
+  parallel_rows(0, C.ny, C.nx, [&](int J) {
     double wl = 0.0;
     for (int k = 0; k < K; ++k) wl += F.try_.rw[J * K + k] * F.wy[F.try_.ri[J * K + k]];
     const double tang = C.wy[J] / wl;
@@ -70,20 +70,19 @@ void coarsen_operator(const MultigridHierarchy::Level& F, MultigridHierarchy::Le
       for (int k = 0; k < K; ++k) s += F.try_.rw[J * K + k] * F.tx(e, F.try_.ri[J * K + k]);
       C.tx(I, J) = s * tang * face_dist(F.cx, F.lx, e) / face_dist(C.cx, C.lx, I);
     }
-  }
+  });
   std::vector<double> tang_x(C.nx);
   for (int I = 0; I < C.nx; ++I) {
     double wl = 0.0;
     for (int k = 0; k < K; ++k) wl += F.trx.rw[I * K + k] * F.wx[F.trx.ri[I * K + k]];
     tang_x[I] = C.wx[I] / wl;
   }
-#pragma omp parallel for schedule(static) if (par)
-  for (int J = 0; J <= C.ny; ++J) {
+  parallel_rows(0, C.ny + 1, C.nx, [&](int J) {
     if (J == 0 || J == C.ny) {
       switch (C.sides[J == 0 ? Bottom : Top]) {
         case FaceKind::Wall:
           for (int I = 0; I < C.nx; ++I) C.ty(I, J) = 0.0;
-          continue;
+          return;
         case FaceKind::Periodic: break;
       }
     }
@@ -94,7 +93,7 @@ void coarsen_operator(const MultigridHierarchy::Level& F, MultigridHierarchy::Le
       for (int k = 0; k < K; ++k) s += F.trx.rw[I * K + k] * F.ty(F.trx.ri[I * K + k], e);
       C.ty(I, J) = s * tang_x[I] * normal;
     }
-  }
+  });
 }
 
 }  // namespace
@@ -118,10 +117,8 @@ void build_fine_operator(const PoissonOperator& op, Field& tx, Field& ty, Field&
   const Field& bx = *op.beta_x;
   const Field& by = *op.beta_y;
   const Sides sides = op.sides;
-  const bool par = op.grid.cells() >= kMultigridMinParallelCells;
   // a periodic direction's faces 0 and n are one face: both get the mean of the two betas
-#pragma omp parallel for schedule(static) if (par)
-  for (int j = 0; j < ny; ++j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     for (int i = 1; i < nx; ++i) tx(i, j) = bx(i, j);
     switch (sides[Left]) {
       case FaceKind::Wall: tx(0, j) = 0.0; break;
@@ -131,10 +128,10 @@ void build_fine_operator(const PoissonOperator& op, Field& tx, Field& ty, Field&
       case FaceKind::Wall: tx(nx, j) = 0.0; break;
       case FaceKind::Periodic: tx(nx, j) = tx(0, j); break;
     }
-  }
-#pragma omp parallel for schedule(static) if (par)
-  for (int j = 1; j < ny; ++j)
+  });
+  parallel_rows(1, ny, nx, [&](int j) {
     for (int i = 0; i < nx; ++i) ty(i, j) = by(i, j);
+  });
   switch (sides[Bottom]) {
     case FaceKind::Wall:
       for (int i = 0; i < nx; ++i) ty(i, 0) = 0.0;
@@ -189,7 +186,7 @@ mg::Stencil MultigridHierarchy::stencil(int l) const {
 void MultigridHierarchy::update_threads() {
   const int mt = std::max(1, std::min(omp_get_max_threads(), scratch_.nthreads));
   for (Level& L : levels_)
-    L.threads = std::size_t(L.nx) * std::size_t(L.ny) >= kMultigridMinParallelCells ? mt : 1;
+    L.threads = std::size_t(L.nx) * std::size_t(L.ny) >= kMinParallelCells ? mt : 1;
 }
 
 void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& opt,

@@ -55,9 +55,6 @@ void validate_poisson_operator(const PoissonOperator& op);
 /// (re)sized with one ghost layer.
 void build_fine_operator(const PoissonOperator& op, Field& tx, Field& ty, Field& invd);
 
-/// Cells below which a level runs serially (no OpenMP region).
-inline constexpr std::size_t kMultigridMinParallelCells = 16384;
-
 class MultigridHierarchy {
  public:
   struct Level {

@@ -9,6 +9,7 @@
 #include "kernels/advection.hpp"
 #include "kernels/loop.hpp"
 #include "kernels/projection.hpp"
+#include "kernels/rk4.hpp"
 #include "kernels/solid_stress.hpp"
 #include "kernels/viscous.hpp"
 #include "solver/boundary.hpp"
@@ -29,7 +30,7 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
     f->resize(nx, ny, ng);
   for (Field* f : {&uf_, &beta_x_, &gxf_}) f->resize(nx + 1, ny, ng);
   for (Field* f : {&vf_, &beta_y_, &gyf_}) f->resize(nx, ny + 1, ng);
-  for (Field* f : {&k2x_, &k2y_, &k3x_, &k3y_, &k4x_, &k4y_}) f->resize(nx, ny, ng);
+  for (Field* f : {&k2x_, &k2y_}) f->resize(nx, ny, ng);
   bool elastic = false;
   for (const SolidSpec& sp : cfg_.solids) {
     solids_.push_back(std::make_unique<Solid>(sp, cfg_.solid_opt, cfg_.grid, face_boundary(cfg_)));
@@ -232,7 +233,7 @@ double Simulation::stable_dt() const {
   const Grid& g = cfg_.grid;
   // advective: dt (|u| + |v|)_max / dx <= cfl (section 4; RK-4 with central fluxes is stable
   // to a Courant number of 2.8 on the imaginary axis, the scene's cfl keeps a margin)
-  double umax = parallel_rows_max(0, g.ny, [&](int j) {
+  double umax = parallel_rows_max(0, g.ny, g.nx, [&](int j) {
     double m = 0.0;
     for (int i = 0; i < g.nx; ++i) m = std::max(m, std::abs(u_(i, j)) + std::abs(v_(i, j)));
     return m;
@@ -246,7 +247,7 @@ double Simulation::stable_dt() const {
   // (the checkerboard mode: 8 from the compact normal stress 2 mu u_xx, 4 from mu u_yy),
   // so forward Euler is stable for dt <= rho dx^2 / (6 mu). The paper's 0.5 rho dx^2 / mu
   // is the bound of the 1-D Laplacian.
-  double nu_max = parallel_rows_max(0, g.ny, [&](int j) {
+  double nu_max = parallel_rows_max(0, g.ny, g.nx, [&](int j) {
     double m = 0.0;
     for (int i = 0; i < g.nx; ++i) m = std::max(m, mu_(i, j) / rho_(i, j));
     return m;
@@ -279,14 +280,14 @@ void Simulation::add_contact_face_accel() {
     case FaceKind::Wall: break;
     case FaceKind::Periodic: y_seam = true; break;
   }
-  parallel_rows(0, g.ny, [&](int j) {
+  parallel_rows(0, g.ny, g.nx, [&](int j) {
     for (int i = 1; i < g.nx; ++i) gxf_(i, j) -= beta_x_(i, j) * cfx_(i, j);
     if (x_seam) {
       gxf_(0, j) -= beta_x_(0, j) * cfx_(0, j);
       gxf_(g.nx, j) = gxf_(0, j);
     }
   });
-  parallel_rows(0, g.ny + 1, [&](int j) {
+  parallel_rows(0, g.ny + 1, g.nx, [&](int j) {
     if ((j == 0 || j == g.ny) && !y_seam) return;
     const int jj = j == g.ny ? 0 : j;
     for (int i = 0; i < g.nx; ++i) gyf_(i, j) -= beta_y_(i, jj) * cfy_(i, jj);
@@ -340,31 +341,34 @@ void Simulation::advect_momentum(double dt) {
   const int nx = g.nx, ny = g.ny;
   const FluxScheme scheme = cfg_.advection;
   const double t = t_;
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     for (int i = 0; i < nx; ++i) {
       mx_(i, j) = rho_old_(i, j) * u_(i, j);
       my_(i, j) = rho_old_(i, j) * v_(i, j);
     }
   });
-  auto rhs = [&](Field& qx, Field& qy, Field& kx, Field& ky) {
+  // kernels/rk4.hpp: (mx_, my_) holds q^n and receives q^{n+1}; stage states in (sx_, sy_)
+  Rk4Fields f;
+  f.q0x = mx_.cview();
+  f.q0y = my_.cview();
+  f.sx = sx_.view();
+  f.sy = sy_.view();
+  f.accx = kx_.view();
+  f.accy = ky_.view();
+  f.kx = k2x_.view();
+  f.ky = k2y_.view();
+  f.outx = mx_.view();
+  f.outy = my_.view();
+  f.ni = nx;
+  f.nj = ny;
+  rk4_step(f, dt, [&](int stage, View kx, View ky) {
+    Field& qx = stage == 1 ? mx_ : sx_;
+    Field& qy = stage == 1 ? my_ : sy_;
     fill_vector_ghosts(qx, qy, cfg_.bc, t, cfg_.rho_f);
-    advect_rhs2(qx.view(), qy.view(), uf_.view(), vf_.view(), kx.view(), ky.view(), nx, ny,
-                g.dx, scheme);
-  };
-  rhs(mx_, my_, kx_, ky_);
-  axpy_interior(mx_.view(), kx_.view(), 0.5 * dt, sx_.view(), nx, ny);
-  axpy_interior(my_.view(), ky_.view(), 0.5 * dt, sy_.view(), nx, ny);
-  rhs(sx_, sy_, k2x_, k2y_);
-  axpy_interior(mx_.view(), k2x_.view(), 0.5 * dt, sx_.view(), nx, ny);
-  axpy_interior(my_.view(), k2y_.view(), 0.5 * dt, sy_.view(), nx, ny);
-  rhs(sx_, sy_, k3x_, k3y_);
-  axpy_interior(mx_.view(), k3x_.view(), dt, sx_.view(), nx, ny);
-  axpy_interior(my_.view(), k3y_.view(), dt, sy_.view(), nx, ny);
-  rhs(sx_, sy_, k4x_, k4y_);
-  rk4_combine(mx_.view(), kx_.view(), k2x_.view(), k3x_.view(), k4x_.view(), dt, nx, ny);
-  rk4_combine(my_.view(), ky_.view(), k2y_.view(), k3y_.view(), k4y_.view(), dt, nx, ny);
+    advect_rhs2(qx.view(), qy.view(), uf_.view(), vf_.view(), kx, ky, nx, ny, g.dx, scheme);
+  });
   // u* = (rho u)* / rho^{n+1}
-  parallel_rows(0, ny, [&](int j) {
+  parallel_rows(0, ny, nx, [&](int j) {
     for (int i = 0; i < nx; ++i) {
       u_(i, j) = mx_(i, j) / rho_(i, j);
       v_(i, j) = my_(i, j) / rho_(i, j);
@@ -437,7 +441,7 @@ void Simulation::project(double dt) {
   const Sides fb = face_boundary(cfg_);
   fill_scalar_ghosts(dp_, cfg_.bc);
   // step 7, eq. (5.5)
-  parallel_rows(0, g.ny, [&](int j) {
+  parallel_rows(0, g.ny, g.nx, [&](int j) {
     for (int i = 0; i < g.nx; ++i) p_(i, j) += dp_(i, j);
   });
   fill_scalar_ghosts(p_, cfg_.bc);
@@ -493,7 +497,7 @@ Field Simulation::named_field(const std::string& name) const {
 
 double Simulation::kinetic_energy() const {
   const Grid& g = cfg_.grid;
-  return g.dx * g.dx * parallel_rows_sum(0, g.ny, [&](int j) {
+  return g.dx * g.dx * parallel_rows_sum(0, g.ny, g.nx, [&](int j) {
     double s = 0.0;
     for (int i = 0; i < g.nx; ++i)
       s += 0.5 * rho_(i, j) * (u_(i, j) * u_(i, j) + v_(i, j) * v_(i, j));

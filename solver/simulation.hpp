@@ -124,7 +124,7 @@ class Simulation {
   Field beta_x_, beta_y_;                  // 1/rho on faces for the Poisson problem
   Field dp_, rhs_;                         // pressure correction and Poisson right-hand side
   // RK-4 work arrays (momentum rho u, rho v)
-  Field mx_, my_, kx_, ky_, sx_, sy_, fx_, fy_, k2x_, k2y_, k3x_, k3y_, k4x_, k4y_;
+  Field mx_, my_, kx_, ky_, sx_, sy_, fx_, fy_, k2x_, k2y_;
   Field gxf_, gyf_;                        // face accelerations G_f of eqs. (5.3), (5.7)
   std::vector<std::unique_ptr<Solid>> solids_;
   mutable std::vector<SolidDiagnostics> solid_diag_;  ///< cache of solid_diagnostics()

@@ -7,6 +7,7 @@
 
 #include "kernels/loop.hpp"
 #include "kernels/reference_map.hpp"
+#include "kernels/rk4.hpp"
 #include "kernels/solid_stress.hpp"
 #include "solver/extrapolation.hpp"
 
@@ -107,40 +108,25 @@ void Solid::advect(const Field& uf, const Field& vf, double dt) {
   x0x_ = xi_x_;
   x0y_ = xi_y_;
   const XiFlux flux = opt_.xi_advection;
-  auto rhs = [&](Field& kx, Field& ky, bool re_extrapolate) {
-    if (re_extrapolate) extrapolate();
-    reference_map_rhs(xi_x_.view(), xi_y_.view(), phi_.view(), uf.view(), vf.view(), ni, nj, i0_,
-                      j0_, grid_.dx, kx.view(), ky.view(), flux);
-  };
-  auto stage = [&](const Field& kx, const Field& ky, double c) {
-    parallel_rows(0, nj, [&](int j) {
-      for (int i = 0; i < ni; ++i) {
-        xi_x_(i, j) = x0x_(i, j) + c * kx(i, j);
-        xi_y_(i, j) = x0y_(i, j) + c * ky(i, j);
-      }
-    });
-  };
-  auto accumulate = [&](double w) {
-    parallel_rows(0, nj, [&](int j) {
-      for (int i = 0; i < ni; ++i) {
-        kx_(i, j) += w * k2x_(i, j);
-        ky_(i, j) += w * k2y_(i, j);
-      }
-    });
-  };
+  // xi itself is the stage state (the extrapolation and phi read it); x0 keeps xi^n
+  Rk4Fields f;
+  f.q0x = x0x_.cview();
+  f.q0y = x0y_.cview();
+  f.sx = f.outx = xi_x_.view();
+  f.sy = f.outy = xi_y_.view();
+  f.accx = kx_.view();  // k1 + 2 k2 + 2 k3 + k4
+  f.accy = ky_.view();
+  f.kx = k2x_.view();
+  f.ky = k2y_.view();
+  f.ni = ni;
+  f.nj = nj;
   fill_ghosts(xi_x_, 0);
   fill_ghosts(xi_y_, 1);
-  rhs(kx_, ky_, false);                // k1 (kx_ accumulates k1 + 2 k2 + 2 k3 + k4)
-  stage(kx_, ky_, 0.5 * dt);
-  rhs(k2x_, k2y_, true);               // k2
-  accumulate(2.0);
-  stage(k2x_, k2y_, 0.5 * dt);
-  rhs(k2x_, k2y_, true);               // k3
-  accumulate(2.0);
-  stage(k2x_, k2y_, dt);
-  rhs(k2x_, k2y_, true);               // k4
-  accumulate(1.0);
-  stage(kx_, ky_, dt / 6.0);
+  rk4_step(f, dt, [&](int stage, View kx, View ky) {
+    if (stage > 1) extrapolate();  // stages 2-4: the band of this stage's xi
+    reference_map_rhs(xi_x_.view(), xi_y_.view(), phi_.view(), uf.view(), vf.view(), ni, nj, i0_,
+                      j0_, grid_.dx, kx, ky, flux);
+  });
   fill_ghosts(xi_x_, 0);
   fill_ghosts(xi_y_, 1);
 }
@@ -166,7 +152,7 @@ void Solid::compute_phi_from_xi() {
   // eq. (3.2): phi(x, t) = phi0(xi(x, t)) wherever xi is valid; +band elsewhere
   const Shape& s = *shape_;
   const double cap = band_;
-  parallel_rows(0, nj_, [&](int j) {
+  parallel_rows(0, nj_, ni_, [&](int j) {
     for (int i = 0; i < ni_; ++i)
       phi_(i, j) = known_(i, j) ? std::clamp(s.phi0(xi_x_(i, j), xi_y_(i, j)), -cap, cap) : cap;
   });
@@ -237,7 +223,7 @@ double Solid::phi_global(int i, int j) const {
 void Solid::add_blend(Field& out, double q_s, double q_f) const {
   const double dq = q_s - q_f;
   if (dq == 0.0) return;
-  parallel_rows(0, nj_, [&](int j) {
+  parallel_rows(0, nj_, ni_, [&](int j) {
     for (int i = 0; i < ni_; ++i) {
       const double ph = phi_(i, j);
       if (ph >= wt_) continue;
