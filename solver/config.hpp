@@ -141,6 +141,10 @@ struct Config {
   // output
   double output_interval = 0.0;  ///< simulated time between VTK frames; 0 = first and last only
   bool write_vtk = true;
+  /// a checkpoint (DIR/checkpoint.bin, solver/checkpoint.cpp) with every VTK frame
+  bool checkpoint_frames = true;
+  /// and every this many wall minutes (0: not by wall time); refmap run --checkpoint-minutes
+  double checkpoint_minutes = 30.0;
   int diagnostics_every = 1;     ///< steps between rows of diagnostics.csv
   double log_interval_s = 2.0;   ///< wall seconds between log lines when not on a terminal
   std::vector<ProbeSpec> probes;

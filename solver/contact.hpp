@@ -76,6 +76,9 @@
 
 namespace refmap {
 
+class CheckpointWriter;
+class CheckpointReader;
+
 struct ContactEvent {
   double time = 0.0;
   int solid = 0;
@@ -122,6 +125,10 @@ class Contact {
   /// Pair force totals of the last add_force (x, y of solid a then b, for every pair with
   /// a force), for tests.
   const std::vector<double>& last_pair_totals() const { return pair_totals_; }
+
+  /// The gap and event tracker's state for a checkpoint (solver/checkpoint.cpp).
+  void save_state(CheckpointWriter& w) const;
+  void load_state(CheckpointReader& r);
 
  private:
   struct WallState {

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
 #include <unistd.h>
@@ -35,6 +36,27 @@ CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> header, c
   }
   buf_ += '\n';
   flush();
+}
+
+CsvWriter CsvWriter::resume(const std::string& path, std::vector<std::string> header, std::size_t bytes, long rows) {
+  CsvWriter w;
+  w.path_ = path;
+  w.header_ = std::move(header);
+  std::error_code ec;
+  if (std::filesystem::file_size(path, ec) < bytes || ec)
+    throw std::runtime_error(path + " is shorter than when the checkpoint was written (" + std::to_string(bytes) +
+                             " bytes): it cannot be continued");
+  std::filesystem::resize_file(path, bytes, ec);
+  if (ec) throw std::runtime_error("cannot cut " + path + " back to its checkpoint: " + ec.message());
+  errno = 0;
+  w.file_.reset(std::fopen(path.c_str(), "a"));
+  if (!w.file_)
+    throw std::runtime_error("cannot open " + path + " for appending: " + (errno ? std::strerror(errno) : "open failed"));
+  std::setvbuf(w.file_.get(), nullptr, _IONBF, 0);
+  w.committed_ = bytes;
+  w.rows_ = rows;
+  w.last_flush_ = std::chrono::steady_clock::now();
+  return w;
 }
 
 CsvWriter::~CsvWriter() {

@@ -14,6 +14,10 @@ class CsvWriter {
   /// prefixed with "# " unless it already starts with '#'; multi-line OK) and the column
   /// header, and flushes them. Throws std::runtime_error if the file cannot be opened.
   CsvWriter(const std::string& path, std::vector<std::string> header, const std::string& comment_header = "");
+  /// Continues `path` from a checkpoint: the file is cut back to `bytes` (the whole rows
+  /// written when the checkpoint was taken; rows written after it are dropped, the resumed
+  /// run writes them again) and rows are appended from there.
+  static CsvWriter resume(const std::string& path, std::vector<std::string> header, std::size_t bytes, long rows);
   ~CsvWriter();  ///< flushes
   CsvWriter(CsvWriter&&) noexcept;
   CsvWriter& operator=(CsvWriter&&) noexcept;
@@ -31,8 +35,11 @@ class CsvWriter {
   const std::string& path() const { return path_; }
   std::size_t columns() const { return header_.size(); }
   long rows() const { return rows_; }
+  /// Bytes in the file after flush() (whole rows only).
+  std::size_t bytes() const { return committed_; }
 
  private:
+  CsvWriter() = default;
   struct Closer { void operator()(std::FILE* f) const { if (f) std::fclose(f); } };
   std::string path_;
   std::vector<std::string> header_;

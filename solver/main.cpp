@@ -3,12 +3,17 @@
 //   refmap run SCENE.toml [--out DIR] [--threads N] [--set key=value ...] [--quiet]
 //              [--timing-warmup N]
 //   refmap keys [--markdown]      (the scene-key reference, from solver/scene_keys.cpp)
+//   refmap resume DIR [--threads N] [--quiet]
+//   refmap keys [--markdown]
 //   refmap --help | refmap run --help | refmap --version
 //
-// Exit codes: 0 success, 1 unexpected error, 2 bad command line or scene file (nothing is
-// written), 3 the simulation failed (non-finite fields, divergence blow-up).
+// Exit codes: 0 success, 1 a bug (an unexpected exception), 2 bad command line, scene file
+// or checkpoint (nothing is written), 3 the simulation failed (non-finite fields, blow-up,
+// a solid lost, an output that cannot be written; partial output valid), 130 / 143 stopped
+// by SIGINT / SIGTERM after writing a checkpoint.
 #include <algorithm>
 #include <cctype>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -24,12 +29,15 @@
 #include <omp.h>
 #endif
 
+#include "solver/checkpoint_io.hpp"
 #include "solver/config.hpp"
+#include "solver/memory_estimate.hpp"
 #include "solver/run.hpp"
 #include "solver/option_names.hpp"
 #include "solver/scene.hpp"
 #include "solver/scene_keys.hpp"
 #include "solver/simulation.hpp"
+#include "solver/stop_signal.hpp"
 
 #ifndef REFMAP_VERSION
 #define REFMAP_VERSION "0.1"
@@ -126,43 +134,36 @@ void write_timings_csv(const fs::path& dir, const refmap::Simulation& sim, const
   if (!f) throw std::runtime_error("cannot write " + (dir / "timings.csv").string());
 }
 
-int cmd_run(const std::string& scene, std::string out, int threads, bool threads_given,
-            const std::vector<std::string>& sets, bool quiet, long warmup) {
-  if (threads_given && threads < 1) return error("--threads must be >= 1, got " + std::to_string(threads), kExitUsage);
-
-  refmap::Config cfg;
-  try {
-    cfg = refmap::load_scene(scene, sets);
-  } catch (const refmap::SceneError& e) {
-    return error(e.what(), kExitUsage);
-  }
-
+int set_threads(int threads, bool threads_given) {
 #ifdef _OPENMP
   if (threads_given) omp_set_num_threads(threads);
-  const int nthreads = omp_get_max_threads();
+  return omp_get_max_threads();
 #else
-  const int nthreads = 1;
+  return 1;
 #endif
+}
 
-  if (out.empty()) out = (fs::path("out") / cfg.name).string();
-  fs::create_directories(out);
-  const fs::path dir = fs::absolute(out).lexically_normal();
-  write_scene_copy(dir, scene, sets);
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
+/// Runs sim (fresh or resumed) into dir and reports: the part `run` and `resume` share.
+int execute(refmap::Simulation& sim, const fs::path& dir, refmap::RunOptions ro, int nthreads, long warmup,
+            bool quiet) {
+  const refmap::Config& cfg = sim.config();
   if (!quiet) {
-    std::printf("refmap %s: scene '%s' (%s), %d x %d cells, dx = %.6g, t = %.6g .. %.6g, %d thread%s\n", REFMAP_VERSION,
-                cfg.name.c_str(), scene.c_str(), cfg.grid.nx, cfg.grid.ny, cfg.grid.dx, cfg.t_start, cfg.t_end,
-                nthreads, nthreads == 1 ? "" : "s");
+    std::printf("memory: about %s for the fields, Poisson levels and solids\n",
+                refmap::estimate_memory(cfg).summary().c_str());
     std::fflush(stdout);
   }
-
-  refmap::Simulation sim(cfg);
-  refmap::RunOptions ro;
   ro.out_dir = dir.string();
   ro.progress = !quiet;
   ro.quiet = quiet;
-  if (warmup < 0) return error("--timing-warmup must be >= 0, got " + std::to_string(warmup), kExitUsage);
   ro.timing_warmup_steps = warmup;
+  refmap::install_stop_handlers();
   const refmap::RunSummary s = refmap::run(sim, ro);
 
   if (s.failed) {
@@ -173,6 +174,15 @@ int cmd_run(const std::string& scene, std::string out, int threads, bool threads
     return kExitFailed;
   }
   write_timings_csv(dir, sim, s, nthreads, warmup);
+  if (s.signal) {
+    std::fflush(stdout);
+    std::cerr << "refmap: stopped by " << (s.signal == SIGINT ? "SIGINT" : s.signal == SIGTERM ? "SIGTERM" : "a signal")
+              << " after step " << s.steps << " at t = " << s.t_end << "; outputs written up to there\n";
+    if (!s.checkpoint.empty())
+      std::cerr << "refmap: checkpoint " << s.checkpoint << "\nrefmap: continue with: refmap resume "
+                << shell_quote(dir.string()) << std::endl;
+    return 128 + s.signal;
+  }
   if (!quiet) {
     std::printf("\nfinished: %ld steps, simulated time %.10g, wall %.3f s%s\n", s.steps, s.t_end, s.wall_s,
                 s.steady ? " (steady state reached)" : "");
@@ -188,7 +198,7 @@ int cmd_run(const std::string& scene, std::string out, int threads, bool threads
       std::snprintf(line, sizeof line,
                     "solid %-15s %s extrapolation: %ld calls, %ld cells filled, %ld fallbacks%s, "
                     "%ld window moves\n",
-                    solid->spec().name.c_str(), refmap::to_string(sim.config().solid_opt.extrapolation), c.calls,
+                    solid->spec().name.c_str(), refmap::to_string(cfg.solid_opt.extrapolation), c.calls,
                     c.cells_filled, c.fallbacks,
                     c.iterations ? (", " + std::to_string(c.iterations) + " PDE iterations").c_str() : "",
                     solid->rewindows());
@@ -197,6 +207,87 @@ int cmd_run(const std::string& scene, std::string out, int threads, bool threads
     std::fputs(table.str().c_str(), stdout);
   }
   return 0;
+}
+
+/// The output directory, created; a directory that cannot be made is a usage error.
+bool make_output_dir(const std::string& out, fs::path& dir, std::string& why) {
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec || !fs::is_directory(out)) {
+    why = "cannot create the output directory " + out + ": " + (ec ? ec.message() : "not a directory");
+    return false;
+  }
+  dir = fs::absolute(out).lexically_normal();
+  return true;
+}
+
+int cmd_run(const std::string& scene, std::string out, int threads, bool threads_given,
+            const std::vector<std::string>& sets, bool quiet, long warmup, double ck_minutes) {
+  if (threads_given && threads < 1) return error("--threads must be >= 1, got " + std::to_string(threads), kExitUsage);
+  if (warmup < 0) return error("--timing-warmup must be >= 0, got " + std::to_string(warmup), kExitUsage);
+
+  refmap::Config cfg;
+  try {
+    cfg = refmap::load_scene(scene, sets);
+  } catch (const refmap::SceneError& e) {
+    return error(e.what(), kExitUsage);
+  }
+  const int nthreads = set_threads(threads, threads_given);
+
+  if (out.empty()) out = (fs::path("out") / cfg.name).string();
+  fs::path dir;
+  std::string why;
+  if (!make_output_dir(out, dir, why)) return error(why, kExitUsage);
+  write_scene_copy(dir, scene, sets);
+
+  if (!quiet) {
+    std::printf("refmap %s: scene '%s' (%s), %d x %d cells, dx = %.6g, t = %.6g .. %.6g, %d thread%s\n", REFMAP_VERSION,
+                cfg.name.c_str(), scene.c_str(), cfg.grid.nx, cfg.grid.ny, cfg.grid.dx, cfg.t_start, cfg.t_end,
+                nthreads, nthreads == 1 ? "" : "s");
+    std::fflush(stdout);
+  }
+
+  refmap::Simulation sim(cfg);
+  refmap::RunOptions ro;
+  ro.scene_text = read_text(scene);
+  ro.scene_path = fs::absolute(scene).lexically_normal().string();
+  ro.sets = sets;
+  ro.checkpoint_minutes = ck_minutes;
+  return execute(sim, dir, ro, nthreads, warmup, quiet);
+}
+
+int cmd_resume(const std::string& out, int threads, bool threads_given, bool quiet, double ck_minutes) {
+  if (threads_given && threads < 1) return error("--threads must be >= 1, got " + std::to_string(threads), kExitUsage);
+  const fs::path dir = fs::absolute(out).lexically_normal();
+  const std::string path = (dir / "checkpoint.bin").string();
+  try {
+    refmap::CheckpointReader r(path);
+    const refmap::CheckpointScene sc = refmap::read_checkpoint_scene(r);
+    refmap::Config cfg;
+    try {
+      cfg = refmap::load_scene_string(sc.text, sc.path, sc.sets);
+    } catch (const refmap::SceneError& e) {
+      return error(std::string("the checkpoint's scene: ") + e.what(), kExitUsage);
+    }
+    const int nthreads = set_threads(threads, threads_given);
+    refmap::Simulation sim(cfg);
+    sim.load_state(r);
+    if (!quiet) {
+      std::printf("refmap %s: resuming scene '%s' (%s) from %s at step %ld, t = %.10g, %d thread%s\n",
+                  REFMAP_VERSION, cfg.name.c_str(), sc.path.c_str(), path.c_str(), sim.steps(), sim.time(), nthreads,
+                  nthreads == 1 ? "" : "s");
+      std::fflush(stdout);
+    }
+    refmap::RunOptions ro;
+    ro.scene_text = sc.text;
+    ro.scene_path = sc.path;
+    ro.sets = sc.sets;
+    ro.checkpoint_minutes = ck_minutes;
+    ro.resume = &r;
+    return execute(sim, dir, ro, nthreads, 0, quiet);
+  } catch (const refmap::CheckpointError& e) {
+    return error(std::string(e.what()) + " (nothing was changed)", kExitUsage);
+  }
 }
 
 }  // namespace
@@ -232,6 +323,24 @@ int main(int argc, char** argv) {
                   "leave the first N steps out of the phase timings (table and DIR/timings.csv)")
       ->type_name("N");
   run->add_flag("-q,--quiet", quiet, "no progress display and no summary (errors are still printed)");
+  double ck_minutes = -1.0;
+  run->add_option("--checkpoint-minutes", ck_minutes,
+                  "write DIR/checkpoint.bin every M wall minutes (default: output.checkpoint_minutes; 0: only with "
+                  "frames and on SIGINT/SIGTERM)")
+      ->type_name("M")
+      ->check(CLI::NonNegativeNumber);
+
+  std::string resume_dir;
+  CLI::App* resume = app.add_subcommand("resume", "continue a run from its output directory's checkpoint");
+  resume->footer("Reads DIR/checkpoint.bin (written with every frame, every output.checkpoint_minutes and on\n"
+                 "SIGINT/SIGTERM) and runs on to the scene's end, continuing diagnostics.csv, the frames and\n"
+                 "the .pvd series; with the same binary and thread count the result is the same bits as an\n"
+                 "uninterrupted run. A damaged checkpoint is refused (exit 2) and nothing is changed.");
+  resume->add_option("dir", resume_dir, "output directory of the run")->required()->type_name("DIR");
+  CLI::Option* resume_threads_opt =
+      resume->add_option("-j,--threads", threads, "number of OpenMP threads")->type_name("N");
+  resume->add_flag("-q,--quiet", quiet, "no progress display and no summary");
+  resume->add_option("--checkpoint-minutes", ck_minutes, "as for run")->type_name("M")->check(CLI::NonNegativeNumber);
 
   bool markdown = false;
   CLI::App* keys = app.add_subcommand("keys", "print the reference of the scene-file keys");
@@ -247,7 +356,8 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (run->parsed()) return cmd_run(scene, out, threads, threads_opt->count() > 0, sets, quiet, warmup);
+    if (run->parsed()) return cmd_run(scene, out, threads, threads_opt->count() > 0, sets, quiet, warmup, ck_minutes);
+    if (resume->parsed()) return cmd_resume(resume_dir, threads, resume_threads_opt->count() > 0, quiet, ck_minutes);
     if (keys->parsed()) {
       std::cout << (markdown ? refmap::scene_keys_markdown() : refmap::scene_keys_text());
       return 0;

@@ -10,12 +10,14 @@
 #include <stdexcept>
 #include <vector>
 
+#include "solver/checkpoint_io.hpp"
 #include "solver/csv.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/health.hpp"
 #include "solver/probes.hpp"
 #include "solver/progress.hpp"
 #include "solver/simulation.hpp"
+#include "solver/stop_signal.hpp"
 #include "solver/vtk.hpp"
 
 namespace refmap {
@@ -79,6 +81,52 @@ class RunOutput {
     if (cfg.write_vtk)  // no .pvd without frames
       pvd_ = std::make_unique<PvdSeries>((fs::path(dir_) / (cfg.name + ".pvd")).string());
   }
+
+  /// The outputs as they were when the checkpoint was written: diagnostics.csv cut back to
+  /// its rows then, frames written after it removed, the .pvd series rewritten.
+  RunOutput(Simulation& sim, const std::string& out_dir, CheckpointReader& r) : sim_(sim), dir_(out_dir) {
+    frame_ = int(r.get_i64("run.frames"));
+    const std::int64_t n = r.get_i64("run.pvd_entries");
+    std::vector<std::pair<double, std::string>> entries;
+    for (std::int64_t k = 0; k < n; ++k) {
+      const double t = r.get_f64("run.pvd_time");
+      entries.emplace_back(t, r.get_string("run.pvd_file"));
+    }
+    const auto bytes = std::size_t(r.get_i64("run.csv_bytes"));
+    const long rows = long(r.get_i64("run.csv_rows"));
+    if (dir_.empty()) return;
+    fs::create_directories(dir_);
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir_, ec)) {
+      const std::string f = e.path().filename().string();
+      int idx = -1;
+      if (std::sscanf(f.c_str(), "frame_%d.vti", &idx) == 1 && idx >= frame_) fs::remove(e.path(), ec);
+      if (f.ends_with(".vti.tmp")) fs::remove(e.path(), ec);
+    }
+    const Config& cfg = sim_.config();
+    if (bytes > 0)
+      csv_ = std::make_unique<CsvWriter>(CsvWriter::resume((fs::path(dir_) / "diagnostics.csv").string(),
+                                                           diagnostic_columns(sim_), bytes, rows));
+    if (cfg.write_vtk) {
+      pvd_ = std::make_unique<PvdSeries>((fs::path(dir_) / (cfg.name + ".pvd")).string());
+      pvd_->restore(entries);
+    }
+  }
+
+  /// The run's own records of a checkpoint (after flushing diagnostics.csv).
+  void save_state(CheckpointWriter& w) {
+    flush();
+    w.put_i64("run.frames", frame_);
+    const auto entries = pvd_ ? pvd_->entries() : std::vector<std::pair<double, std::string>>{};
+    w.put_i64("run.pvd_entries", std::int64_t(entries.size()));
+    for (const auto& [t, f] : entries) {
+      w.put_f64("run.pvd_time", t);
+      w.put_string("run.pvd_file", f);
+    }
+    w.put_i64("run.csv_bytes", csv_ ? std::int64_t(csv_->bytes()) : 0);
+    w.put_i64("run.csv_rows", csv_ ? csv_->rows() : 0);
+  }
+  const std::string& dir() const { return dir_; }
 
   /// A directory used before holds the files of the earlier run; frames of that run
   /// beside this one's would be read as one series. Only the names refmap writes are
@@ -196,27 +244,107 @@ class SteadyCheck {
   Field u_old_, v_old_;
 };
 
+/// A kinetic energy that grows by orders of magnitude in one step is a blow-up even while
+/// every field is still finite (an explicit step far past its stability limit can take
+/// the energy from 0.1 to 5e4 in one step). Growth by more than kFactor over the larger of
+/// the previous step's energy and the largest so far stops the run; the first steps are
+/// exempt (a flow started from rest multiplies its energy by large factors at first).
+class BlowUpCheck {
+ public:
+  static constexpr double kFactor = 1e3;
+  static constexpr long kGrace = 2;
+  std::string check(const Simulation& sim) {
+    const double ke = sim.kinetic_energy();
+    std::string bad;
+    if (steps_ >= kGrace && prev_ > 0.0 && ke > kFactor * std::max(prev_, peak_)) {
+      char buf[256];
+      std::snprintf(buf, sizeof buf,
+                    "kinetic energy grew from %.3g to %.3g in one step (step %ld, t = %.6g): the solution is "
+                    "blowing up",
+                    prev_, ke, sim.steps(), sim.time());
+      bad = buf;
+    }
+    ++steps_;
+    peak_ = std::max(peak_, ke);
+    prev_ = ke;
+    return bad;
+  }
+
+ private:
+  long steps_ = 0;
+  double prev_ = 0.0, peak_ = 0.0;
+};
+
 }  // namespace
+
+CheckpointScene read_checkpoint_scene(CheckpointReader& r) {
+  CheckpointScene c;
+  c.text = r.get_string("scene.text");
+  c.path = r.get_string("scene.path");
+  const std::int64_t n = r.get_i64("scene.sets");
+  for (std::int64_t k = 0; k < n; ++k) c.sets.push_back(r.get_string("scene.set"));
+  return c;
+}
 
 RunSummary run(Simulation& sim, const RunOptions& opt) {
   const auto wall0 = std::chrono::steady_clock::now();
   const Config& cfg = sim.config();
   RunSummary sum;
-  RunOutput out(sim, opt.out_dir);
-  Progress progress(cfg.t_start, cfg.t_end, cfg.log_interval_s, opt.progress && !opt.quiet);
-  double last_dt = 0.0;
-  out.frame();
-  out.row(last_dt, wall_seconds_since(wall0));
-
   // output schedule: steps land exactly on the frame times and the end time
   const double eps_t = 1e-12 * std::max(1.0, std::abs(cfg.t_end));
   const double frame_interval = cfg.output_interval > 0.0 ? cfg.output_interval : cfg.t_end;
   double next_frame = cfg.output_interval > 0.0 ? cfg.t_start + cfg.output_interval : cfg.t_end;
+  double last_dt = 0.0;
+  std::unique_ptr<RunOutput> outp;
+  if (opt.resume) {
+    CheckpointReader& r = *opt.resume;
+    next_frame = r.get_f64("run.next_frame");
+    last_dt = r.get_f64("run.last_dt");
+    outp = std::make_unique<RunOutput>(sim, opt.out_dir, r);
+    if (!r.at_end()) throw CheckpointError("checkpoint " + r.path() + ": records left over at the end");
+  } else {
+    outp = std::make_unique<RunOutput>(sim, opt.out_dir);
+  }
+  RunOutput& out = *outp;
+  Progress progress(cfg.t_start, cfg.t_end, cfg.log_interval_s, opt.progress && !opt.quiet);
+  if (!opt.resume) {
+    out.frame();
+    out.row(last_dt, wall_seconds_since(wall0));
+  }
+
+  // checkpoints (solver/checkpoint.cpp): with every frame, every checkpoint_minutes of wall
+  // time and on SIGINT/SIGTERM; written to a temporary and renamed, so the file on disk is
+  // always a whole checkpoint
+  const bool checkpoints = out.enabled() && !opt.scene_text.empty();
+  const double ck_minutes = opt.checkpoint_minutes >= 0.0 ? opt.checkpoint_minutes : cfg.checkpoint_minutes;
+  auto last_ck = std::chrono::steady_clock::now();
+  auto write_checkpoint = [&]() {
+    if (!checkpoints) return;
+    ScopedPhase ph(sim.timers(), "checkpoint");
+    CheckpointWriter w;
+    w.put_string("scene.text", opt.scene_text);
+    w.put_string("scene.path", opt.scene_path);
+    w.put_i64("scene.sets", std::int64_t(opt.sets.size()));
+    for (const auto& s : opt.sets) w.put_string("scene.set", s);
+    sim.save_state(w);
+    w.put_f64("run.next_frame", next_frame);
+    w.put_f64("run.last_dt", last_dt);
+    out.save_state(w);
+    sum.checkpoint = (fs::path(out.dir()) / "checkpoint.bin").string();
+    w.save(sum.checkpoint);
+    last_ck = std::chrono::steady_clock::now();
+  };
+
   const int diag_every = std::max(1, cfg.diagnostics_every);
   SteadyCheck steady(cfg.steady_tol);
+  BlowUpCheck blowup;
   // phase timers cover the steps after the warm-up (and the final output)
   auto timed0 = wall0;
   long timed_step0 = sim.steps();
+  auto fail = [&](const std::string& what) {
+    sum.failed = true;
+    sum.failure = what;
+  };
   while (sim.time() < cfg.t_end - eps_t) {
     if (opt.timing_warmup_steps > 0 && sim.steps() == opt.timing_warmup_steps) {
       sim.timers().reset();
@@ -229,20 +357,47 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
     if (out.frames() && next_frame < cfg.t_end && next_frame - sim.time() < dt)
       dt = std::max(next_frame - sim.time(), 1e-300);
     steady.before_step(sim);
-    sim.step(dt);
-    last_dt = dt;
-
-    std::string bad = check_health(sim, dt);
-    if (!bad.empty()) {
-      out.row(last_dt, wall_seconds_since(wall0));
-      sum.failed = true;
-      sum.failure = bad;
+    const long step0 = sim.steps();
+    const double t0 = sim.time();
+    try {
+      sim.step(dt);
+    } catch (const std::runtime_error& e) {
+      // a solid that vanished or reached a periodic side, a window that cannot be fitted:
+      // the state is part-way through the step, so nothing more of it is written
+      char where[128];
+      std::snprintf(where, sizeof where, " (in step %ld, from t = %.6g with dt = %.3g)", step0 + 1, t0, dt);
+      fail(e.what() + std::string(where));
       break;
     }
-    if (sim.steps() % diag_every == 0) out.row(last_dt, wall_seconds_since(wall0));
-    if (out.frames() && sim.time() >= next_frame - eps_t && sim.time() < cfg.t_end - eps_t) {
-      out.frame();
-      next_frame += frame_interval;
+    last_dt = dt;
+
+    try {
+      std::string bad = check_health(sim, dt);
+      if (bad.empty()) bad = blowup.check(sim);
+      if (!bad.empty()) {
+        out.row(last_dt, wall_seconds_since(wall0));
+        fail(bad);
+        break;
+      }
+      if (sim.steps() % diag_every == 0) out.row(last_dt, wall_seconds_since(wall0));
+      if (out.frames() && sim.time() >= next_frame - eps_t && sim.time() < cfg.t_end - eps_t) {
+        out.frame();
+        next_frame += frame_interval;
+        if (cfg.checkpoint_frames) write_checkpoint();
+      }
+      if (ck_minutes > 0.0 &&
+          std::chrono::steady_clock::now() - last_ck >= std::chrono::duration<double>(60.0 * ck_minutes))
+        write_checkpoint();
+      if (const int sig = stop_requested()) {
+        write_checkpoint();
+        sum.signal = sig;
+        break;
+      }
+    } catch (const std::runtime_error& e) {  // an output that cannot be written (full disk)
+      char where[128];
+      std::snprintf(where, sizeof where, " (after step %ld, t = %.6g)", sim.steps(), sim.time());
+      fail(e.what() + std::string(where));
+      break;
     }
     progress.update(sim.time(), sim.steps(), dt, sim.last_poisson_iterations(),
                     sim.last_poisson_residual());
@@ -257,15 +412,19 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
     }
   }
   progress.finish();
-  if (!sum.failed) {
-    if (sim.steps() % diag_every != 0) out.row(last_dt, wall_seconds_since(wall0));
-    out.frame();
-    out.probes();
-  }
-  out.flush();
-  if (sim.contact()) {
-    sim.finish_events();
-    out.events(sim.contact()->events());
+  try {
+    if (!sum.failed) {
+      if (sim.steps() % diag_every != 0) out.row(last_dt, wall_seconds_since(wall0));
+      if (!sum.signal) out.frame();
+      out.probes();
+    }
+    out.flush();
+    if (sim.contact()) {
+      sim.finish_events();
+      out.events(sim.contact()->events());
+    }
+  } catch (const std::runtime_error& e) {
+    if (!sum.failed) fail(e.what() + std::string(" (writing the final output)"));
   }
   sum.steps = sim.steps();
   sum.t_end = sim.time();

@@ -720,6 +720,8 @@ void parse_output(const Ctx& ctx, const Table& top, Config& cfg) {
   o.allow();
   cfg.output_interval = o.number("interval");
   cfg.write_vtk = o.boolean("vtk");
+  cfg.checkpoint_frames = o.boolean("checkpoint");
+  cfg.checkpoint_minutes = o.number("checkpoint_minutes");
   const long de = o.integer("diagnostics_every");
   o.require(de <= std::numeric_limits<int>::max(), "diagnostics_every",
             "must be <= " + std::to_string(std::numeric_limits<int>::max()) + ", got " + std::to_string(de));

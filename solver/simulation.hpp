@@ -16,6 +16,9 @@
 
 namespace refmap {
 
+class CheckpointWriter;
+class CheckpointReader;
+
 class Simulation {
  public:
   explicit Simulation(const Config& cfg);
@@ -74,6 +77,12 @@ class Simulation {
   /// Solid::diagnostics of every solid for the current state, computed once per step and
   /// shared by the contact log and the diagnostics.csv row.
   const std::vector<SolidDiagnostics>& solid_diagnostics() const;
+
+  /// Everything step() needs to continue bit for bit (solver/checkpoint.cpp): time, step,
+  /// the flow fields, every solid's window and the contact tracker. load_state expects a
+  /// Simulation built from the same scene.
+  void save_state(CheckpointWriter& w) const;
+  void load_state(CheckpointReader& r);
 
   /// Fill ghost cells of the cell velocity from the boundary conditions at time t.
   void apply_velocity_bc(Field& u, Field& v, double t) const;

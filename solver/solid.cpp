@@ -181,12 +181,20 @@ void Solid::fit_window(bool force) {
   };
   bool ok_x = wrap_x_ || inside(a, b, i0_, ni_, g.nx);
   bool ok_y = wrap_y_ || inside(c, d, j0_, nj_, g.ny);
+  // checked on every call, not only when re-windowing: a window already at the domain's
+  // edge never needs to move, and a solid carried across a periodic side would otherwise
+  // lose its band (and its area) there without a word
+  const bool cross_x = !wrap_x_ && sides_.periodic_x() && (a - kMarginMin < 0 || b + kMarginMin > g.nx);
+  const bool cross_y = !wrap_y_ && sides_.periodic_y() && (c - kMarginMin < 0 || d + kMarginMin > g.ny);
+  if (cross_x || cross_y) {
+    const bool lo = cross_x ? a - kMarginMin < 0 : c - kMarginMin < 0;
+    const char* side = cross_x ? (lo ? "left" : "right") : (lo ? "bottom" : "top");
+    throw std::runtime_error("solid '" + spec_.name + "' reached the periodic " + side +
+                             " side (its band is within " + std::to_string(kMarginMin) +
+                             " cells of it; solids may not cross a periodic side unless they span the periodic "
+                             "direction)");
+  }
   if (!force && ok_x && ok_y) return;
-  if ((!wrap_x_ && sides_.periodic_x() && (a - kMarginMin < 0 || b + kMarginMin > g.nx)) ||
-      (!wrap_y_ && sides_.periodic_y() && (c - kMarginMin < 0 || d + kMarginMin > g.ny)))
-    throw std::runtime_error("solid '" + spec_.name +
-                             "' reached a periodic boundary (solids may not cross one unless "
-                             "they span the periodic direction)");
   int na = wrap_x_ ? 0 : std::max(0, a - kMarginNew), nb = wrap_x_ ? g.nx : std::min(g.nx, b + kMarginNew);
   int nc = wrap_y_ ? 0 : std::max(0, c - kMarginNew), nd = wrap_y_ ? g.ny : std::min(g.ny, d + kMarginNew);
   const int nni = nb - na, nnj = nd - nc;

@@ -22,6 +22,9 @@
 
 namespace refmap {
 
+class CheckpointWriter;
+class CheckpointReader;
+
 struct ExtrapolationCounters {
   long calls = 0;
   long cells_filled = 0;
@@ -95,6 +98,11 @@ class Solid {
   std::size_t storage_bytes() const;
   double band() const { return band_; }  ///< w_E in length units
   double transition() const { return wt_; }
+
+  /// The solid's evolving state (window, xi, phi, stress, counters) for a checkpoint
+  /// (solver/checkpoint.cpp); `tag` prefixes the records.
+  void save_state(CheckpointWriter& w, const std::string& tag) const;
+  void load_state(CheckpointReader& r, const std::string& tag);
 
  private:
   void initialise();

@@ -160,6 +160,18 @@ void PvdSeries::add(double time, const std::string& file_relative_to_pvd) {
   write();
 }
 
+std::vector<std::pair<double, std::string>> PvdSeries::entries() const {
+  std::vector<std::pair<double, std::string>> out;
+  for (const auto& e : entries_) out.emplace_back(e.time, e.file);
+  return out;
+}
+
+void PvdSeries::restore(const std::vector<std::pair<double, std::string>>& entries) {
+  entries_.clear();
+  for (const auto& [t, f] : entries) entries_.push_back({t, f});
+  write();
+}
+
 void PvdSeries::write() const {
   if (path_.empty()) return;
   std::string x;

@@ -4,6 +4,7 @@
 // headers), the simulated time as a FieldData TIME value, and a .pvd collection that
 // lists the frames with their times.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "solver/field.hpp"
@@ -37,6 +38,9 @@ class PvdSeries {
   void add(double time, const std::string& file_relative_to_pvd);
   const std::string& path() const { return path_; }
   std::size_t size() const { return entries_.size(); }
+  /// The frames listed so far (for a checkpoint); restore() rewrites the series with them.
+  std::vector<std::pair<double, std::string>> entries() const;
+  void restore(const std::vector<std::pair<double, std::string>>& entries);
 
  private:
   void write() const;

@@ -1,0 +1,286 @@
+// Runs that survive (the exit-code contract of solver/main.cpp and the checkpoints of
+// solver/checkpoint.cpp), tested on the refmap binary itself, as a user meets them:
+//  - a run stopped by SIGINT and resumed gives the same diagnostics rows, events, frames
+//    and .pvd series, bit for bit, as the uninterrupted run;
+//  - SIGTERM: exit 143, every output of the state reached written, no temporary left;
+//  - a damaged checkpoint is refused with exit 2 and changes nothing;
+//  - failures during the run (a blow-up, a solid carried into a periodic side) end with
+//    exit 3 and a message naming the step and time; a directory that cannot be made is
+//    exit 2;
+//  - a reused output directory holds no frames of the earlier run; no .pvd without frames.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <spawn.h>
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kBin = REFMAP_BINARY;
+const std::string kScenes = std::string(REFMAP_SOURCE_DIR) + "/scenes/";
+
+struct Result {
+  int code = -1;
+  std::string err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Starts refmap with `args` (stdout and stderr to files in `log`); returns the pid.
+pid_t spawn(const std::vector<std::string>& args, const fs::path& log) {
+  std::vector<std::string> all{kBin};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, (log.string() + ".out").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&fa, 2, (log.string() + ".err").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, kBin.c_str(), &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  return rc == 0 ? pid : -1;
+}
+
+Result wait_for(pid_t pid, const fs::path& log) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  Result r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.err = slurp(log.string() + ".err");
+  return r;
+}
+
+Result run(const std::vector<std::string>& args, const fs::path& log) { return wait_for(spawn(args, log), log); }
+
+/// diagnostics.csv without its wall_time column (the one value that differs by nature).
+std::string diagnostics_without_wall_time(const fs::path& f) {
+  std::istringstream in(slurp(f));
+  std::string line, out;
+  int wall = -1;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line[0] == '#') continue;
+    std::vector<std::string> cols;
+    std::stringstream ss(line);
+    std::string c;
+    while (std::getline(ss, c, ',')) cols.push_back(c);
+    if (wall < 0)
+      for (std::size_t k = 0; k < cols.size(); ++k)
+        if (cols[k] == "wall_time") wall = int(k);
+    for (std::size_t k = 0; k < cols.size(); ++k)
+      if (int(k) != wall) out += cols[k] + ",";
+    out += "\n";
+  }
+  return out;
+}
+
+class Survival : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("refmap_survival_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(Survival, InterruptedAndResumedRunIsBitIdentical) {
+  // two soft discs with contact at 128^2: solids, windows that move, the contact tracker
+  const std::vector<std::string> common{"--threads", "1", "--quiet", "--set", "time.end=0.45"};
+  auto args = [&](const std::string& out) {
+    std::vector<std::string> a{"run", kScenes + "two_solids_tgv.toml", "--out", out};
+    a.insert(a.end(), common.begin(), common.end());
+    return a;
+  };
+  const fs::path A = dir_ / "whole", B = dir_ / "stopped";
+  ASSERT_EQ(run(args(A.string()), dir_ / "a").code, 0);
+
+  const pid_t pid = spawn(args(B.string()), dir_ / "b");
+  ASSERT_GT(pid, 0);
+  // stop it part-way: once some diagnostics rows (flushed about once a wall second) are on disk
+  const auto t0 = std::chrono::steady_clock::now();
+  while (std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60)) {
+    std::error_code ec;
+    if (fs::file_size(B / "diagnostics.csv", ec) > 20000 && !ec) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(pid, SIGINT);
+  const Result stopped = wait_for(pid, dir_ / "b");
+  ASSERT_EQ(stopped.code, 130) << "the run ended before the signal, or did not stop cleanly: " << stopped.err;
+  EXPECT_NE(stopped.err.find("refmap resume"), std::string::npos) << stopped.err;
+  ASSERT_TRUE(fs::exists(B / "checkpoint.bin"));
+  for (const auto& e : fs::directory_iterator(B))
+    EXPECT_EQ(e.path().extension(), e.path().extension() == ".tmp" ? ".none" : e.path().extension())
+        << "temporary left: " << e.path();
+  // the partial output is valid: diagnostics end on a whole row
+  const std::string partial = slurp(B / "diagnostics.csv");
+  ASSERT_FALSE(partial.empty());
+  EXPECT_EQ(partial.back(), '\n');
+
+  const Result resumed = run({"resume", B.string(), "--threads", "1", "--quiet"}, dir_ / "c");
+  ASSERT_EQ(resumed.code, 0) << resumed.err;
+
+  EXPECT_EQ(diagnostics_without_wall_time(A / "diagnostics.csv"), diagnostics_without_wall_time(B / "diagnostics.csv"));
+  EXPECT_EQ(slurp(A / "events.csv"), slurp(B / "events.csv"));
+  EXPECT_EQ(slurp(A / "two_solids_tgv.pvd"), slurp(B / "two_solids_tgv.pvd"));
+  int frames = 0;
+  for (const auto& e : fs::directory_iterator(A)) {
+    if (e.path().extension() != ".vti") continue;
+    ++frames;
+    EXPECT_TRUE(slurp(e.path()) == slurp(B / e.path().filename())) << "frame differs: " << e.path().filename();
+  }
+  EXPECT_GT(frames, 3);
+  int frames_b = 0;
+  for (const auto& e : fs::directory_iterator(B)) frames_b += e.path().extension() == ".vti";
+  EXPECT_EQ(frames, frames_b);
+}
+
+TEST_F(Survival, SigtermWritesEverythingOfTheStateReached) {
+  const fs::path out = dir_ / "cavity";
+  const pid_t pid = spawn({"run", kScenes + "lid_driven_cavity_re100.toml", "--out", out.string(), "--threads", "1",
+                           "--quiet"},
+                          dir_ / "t");
+  const auto t0 = std::chrono::steady_clock::now();
+  while (std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60)) {
+    std::error_code ec;
+    if (fs::file_size(out / "diagnostics.csv", ec) > 5000 && !ec) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(pid, SIGTERM);
+  const Result r = wait_for(pid, dir_ / "t");
+  ASSERT_EQ(r.code, 143) << r.err;
+  for (const char* f : {"checkpoint.bin", "timings.csv", "probe_u_vertical.csv", "probe_v_horizontal.csv"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  for (const auto& e : fs::directory_iterator(out))
+    EXPECT_FALSE(e.path().string().ends_with(".tmp")) << "temporary left: " << e.path();
+}
+
+TEST_F(Survival, DamagedCheckpointIsRefusedAndNothingChanges) {
+  const fs::path out = dir_ / "tg";
+  ASSERT_EQ(run({"run", kScenes + "taylor_green.toml", "--out", out.string(), "--threads", "1", "--quiet", "--set",
+                 "grid.nx=32", "--set", "grid.ny=32"},
+                dir_ / "r")
+                .code,
+            0);
+  ASSERT_TRUE(fs::exists(out / "checkpoint.bin"));  // written with the frames
+  const std::string ck = slurp(out / "checkpoint.bin"), diag = slurp(out / "diagnostics.csv");
+  for (const std::string& damaged : {ck.substr(0, ck.size() / 2), ck.substr(0, ck.size() - 1) + "x"}) {
+    std::ofstream(out / "checkpoint.bin", std::ios::binary | std::ios::trunc) << damaged;
+    const Result r = run({"resume", out.string(), "--quiet"}, dir_ / "d");
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find("checkpoint"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("nothing was changed"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+    EXPECT_EQ(slurp(out / "diagnostics.csv"), diag);
+    EXPECT_EQ(slurp(out / "checkpoint.bin"), damaged);
+  }
+  const Result none = run({"resume", (dir_ / "no_such_run").string(), "--quiet"}, dir_ / "n");
+  EXPECT_EQ(none.code, 2) << none.err;
+}
+
+TEST_F(Survival, BlowUpIsExit3NamingStepAndTime) {
+  // a stiff disc at 40x the explicit solid time step
+  const fs::path out = dir_ / "blowup";
+  const Result r = run({"run", kScenes + "disc_tgv.toml", "--out", out.string(), "--threads", "1", "--quiet", "--set",
+                        "grid.nx=48", "--set", "grid.ny=48", "--set", "time.dt=0.02", "--set", "solids.solid_cfl=2",
+                        "--set", "solid[0].mu_s=200", "--set", "time.end=4"},
+                       dir_ / "b");
+  EXPECT_EQ(r.code, 3) << r.err;
+  // caught by the energy check (solver/run.cpp, BlowUpCheck) while the fields are finite
+  EXPECT_NE(r.err.find("kinetic energy grew from"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("in one step (step 3, t = 0.06)"), std::string::npos) << r.err;
+  const std::string diag = slurp(out / "diagnostics.csv");
+  ASSERT_FALSE(diag.empty());
+  EXPECT_EQ(diag.back(), '\n');
+}
+
+TEST_F(Survival, SolidCarriedIntoAPeriodicSideIsExit3) {
+  // a disc translating with a uniform flow in a periodic box reaches the right side
+  const std::string scene = R"(
+[domain]
+lx = 1.0
+[grid]
+nx = 48
+ny = 48
+[fluid]
+density = 1.0
+viscosity = 0.0
+[boundary]
+left = "periodic"
+right = "periodic"
+bottom = "periodic"
+top = "periodic"
+[initial]
+velocity = "uniform"
+u = 1.0
+[time]
+end = 1.0
+[[solid]]
+name = "traveller"
+shape = "circle"
+center = [0.5, 0.5]
+radius = 0.15
+mu_s = 1.0
+density = 1.0
+u = 1.0
+)";
+  std::ofstream(dir_ / "periodic.toml") << scene;
+  const Result r = run({"run", (dir_ / "periodic.toml").string(), "--out", (dir_ / "p").string(), "--quiet"}, dir_ / "p");
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("'traveller' reached the periodic right side"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("in step "), std::string::npos) << r.err;
+}
+
+TEST_F(Survival, UncreatableOutputDirectoryIsExit2) {
+  std::ofstream(dir_ / "a_file") << "x";
+  const Result r = run({"run", kScenes + "taylor_green.toml", "--out", (dir_ / "a_file" / "out").string(), "--quiet"},
+                       dir_ / "u");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("cannot create the output directory"), std::string::npos) << r.err;
+}
+
+TEST_F(Survival, ReusedDirectoryHoldsNoStaleFramesAndNoPvdWithoutFrames) {
+  const fs::path out = dir_ / "reused";
+  fs::create_directories(out);
+  for (const char* f : {"frame_00099.vti", "old_scene.pvd", "probe_gone.csv", "checkpoint.bin", "notes.txt"})
+    std::ofstream(out / f) << "earlier run";
+  ASSERT_EQ(run({"run", kScenes + "taylor_green.toml", "--out", out.string(), "--quiet", "--set", "grid.nx=16",
+                 "--set", "grid.ny=16", "--set", "output.vtk=false"},
+                dir_ / "s")
+                .code,
+            0);
+  EXPECT_FALSE(fs::exists(out / "frame_00099.vti"));
+  EXPECT_FALSE(fs::exists(out / "old_scene.pvd"));
+  EXPECT_FALSE(fs::exists(out / "probe_gone.csv"));
+  EXPECT_TRUE(fs::exists(out / "notes.txt"));  // not refmap's: left alone
+  for (const auto& e : fs::directory_iterator(out))
+    EXPECT_NE(e.path().extension(), ".pvd") << "a .pvd without frames: " << e.path();
+  EXPECT_TRUE(fs::exists(out / "diagnostics.csv"));
+}
