@@ -39,7 +39,7 @@
 
 #include "kernels/extrapolate_lsq.hpp"
 #include "kernels/extrapolate_pde.hpp"
-#include "solver/field.hpp"
+#include "core/field.hpp"
 #include "tests/fixtures/zalesak_geometry.hpp"
 
 namespace {

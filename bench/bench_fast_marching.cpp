@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "kernels/fast_marching.hpp"
-#include "solver/field.hpp"
+#include "core/field.hpp"
 
 using namespace refmap;
 

@@ -56,7 +56,7 @@
 #include "kernels/projection.hpp"
 #include "kernels/solid_stress.hpp"
 #include "kernels/viscous.hpp"
-#include "solver/field.hpp"
+#include "core/field.hpp"
 
 namespace {
 

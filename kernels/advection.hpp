@@ -3,7 +3,7 @@
 //     rhs = -div(u_f q) = -[ (uf q)_{i+1/2} - (uf q)_{i-1/2} + (vf q)_{j+1/2} - (vf q)_{j-1/2} ] / dx
 // Used for momentum rho*u in eq. (5.1) (RK-4 stages) and, by the solids, for the
 // reference map. Face values of q are second-order central or Superbee-limited upwind.
-#include "solver/field.hpp"
+#include "core/field.hpp"
 
 namespace refmap {
 

@@ -23,7 +23,7 @@
 #include <memory>
 #include <vector>
 
-#include "solver/field.hpp"
+#include "core/field.hpp"
 
 namespace refmap {
 

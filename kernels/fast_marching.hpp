@@ -48,7 +48,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "solver/field.hpp"
+#include "core/field.hpp"
 
 namespace refmap {
 

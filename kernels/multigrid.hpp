@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "kernels/boundary_kind.hpp"
-#include "solver/field.hpp"
+#include "core/field.hpp"
 
 namespace refmap::mg {
 

@@ -6,7 +6,7 @@
 // body-force imbalance) or periodic (computed from the wrapped ghost cells; face n repeats
 // face 0).
 #include "kernels/boundary_kind.hpp"
-#include "solver/field.hpp"
+#include "core/field.hpp"
 
 namespace refmap {
 

@@ -13,7 +13,7 @@
 // [ue (q_e - q_i) + uw (q_i - q_w)] / dx: still exact for affine q (r = 1 gives the central
 // face value), first order at grid-scale oscillations, which they damp. They read two ghost
 // layers of xi.
-#include "solver/field.hpp"
+#include "core/field.hpp"
 
 namespace refmap {
 

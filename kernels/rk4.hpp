@@ -11,7 +11,7 @@
 // and the factors 2 are exact, so both ways give the same bits. Loops run over the ni x nj
 // interior (ghosts are the caller's business) through kernels/loop.hpp.
 #include "kernels/loop.hpp"
-#include "solver/field.hpp"
+#include "core/field.hpp"
 
 namespace refmap {
 

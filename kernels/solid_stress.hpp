@@ -14,7 +14,7 @@
 
 #include "kernels/constitutive.hpp"
 #include "kernels/loop.hpp"
-#include "solver/field.hpp"
+#include "core/field.hpp"
 
 namespace refmap {
 

@@ -6,7 +6,7 @@
 // difference plus the average of the two cells' central differences. mu is a cell field
 // (blended fluid/solid viscosity), averaged arithmetically to faces. u, v and mu need one
 // ghost layer filled (including corners).
-#include "solver/field.hpp"
+#include "core/field.hpp"
 
 namespace refmap {
 

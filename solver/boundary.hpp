@@ -12,7 +12,7 @@
 
 #include "kernels/boundary_kind.hpp"
 #include "solver/config.hpp"
-#include "solver/field.hpp"
+#include "core/field.hpp"
 
 namespace refmap {
 

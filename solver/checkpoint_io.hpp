@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/field.hpp"
+#include "core/field.hpp"
 
 namespace refmap {
 

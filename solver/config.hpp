@@ -11,7 +11,7 @@
 #include "kernels/advection.hpp"
 #include "kernels/reference_map.hpp"
 #include "kernels/constitutive.hpp"
-#include "solver/grid.hpp"
+#include "core/grid.hpp"
 #include "solver/poisson.hpp"
 #include "solver/shape.hpp"
 

@@ -70,8 +70,8 @@
 
 #include "kernels/boundary_kind.hpp"
 #include "solver/config.hpp"
-#include "solver/field.hpp"
-#include "solver/grid.hpp"
+#include "core/field.hpp"
+#include "core/grid.hpp"
 #include "solver/solid.hpp"
 
 namespace refmap {

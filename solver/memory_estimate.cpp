@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "solver/grid.hpp"
+#include "core/grid.hpp"
 #include "solver/shape.hpp"
 
 namespace refmap {

@@ -3,7 +3,7 @@
 // allocated, so that a grid far larger than the machine stops at load time with an exit-2
 // error naming the grid keys instead of std::bad_alloc mid-run. The estimate counts the
 // arrays the solver allocates (solver/simulation.hpp, solver/solid.hpp, the Poisson
-// solver's levels) with the row padding of Field (solver/field.hpp); tests check it
+// solver's levels) with the row padding of Field (core/field.hpp); tests check it
 // against the resident memory of a constructed Simulation.
 #include <cstddef>
 #include <string>

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "kernels/boundary_kind.hpp"
-#include "solver/field.hpp"
-#include "solver/grid.hpp"
+#include "core/field.hpp"
+#include "core/grid.hpp"
 
 namespace refmap {
 

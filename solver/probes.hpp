@@ -3,8 +3,8 @@
 #include <string>
 
 #include "solver/config.hpp"
-#include "solver/field.hpp"
-#include "solver/grid.hpp"
+#include "core/field.hpp"
+#include "core/grid.hpp"
 
 namespace refmap {
 

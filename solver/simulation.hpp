@@ -8,8 +8,8 @@
 
 #include "solver/config.hpp"
 #include "solver/contact.hpp"
-#include "solver/field.hpp"
-#include "solver/grid.hpp"
+#include "core/field.hpp"
+#include "core/grid.hpp"
 #include "solver/poisson.hpp"
 #include "solver/solid.hpp"
 #include "solver/timers.hpp"

@@ -16,8 +16,8 @@
 #include "kernels/extrapolate.hpp"
 #include "kernels/fast_marching.hpp"
 #include "solver/config.hpp"
-#include "solver/field.hpp"
-#include "solver/grid.hpp"
+#include "core/field.hpp"
+#include "core/grid.hpp"
 #include "solver/shape.hpp"
 
 namespace refmap {

@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "solver/field.hpp"
-#include "solver/grid.hpp"
+#include "core/field.hpp"
+#include "core/grid.hpp"
 
 namespace refmap {
 

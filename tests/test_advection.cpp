@@ -9,7 +9,7 @@
 #include <random>
 
 #include "kernels/advection.hpp"
-#include "solver/field.hpp"
+#include "core/field.hpp"
 
 using namespace refmap;
 

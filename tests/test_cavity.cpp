@@ -28,7 +28,10 @@ CavityErrors run_cavity(const std::string& scene, const std::string& column,
                         const std::vector<std::string>& sets = {}) {
   Config cfg = load_scene(scene_path(scene), sets);
   Simulation sim(cfg);
-  RunSummary s = run(sim, RunOptions{"", false, true});
+  RunOptions ro;
+  ro.progress = false;
+  ro.quiet = true;
+  RunSummary s = run(sim, ro);
   EXPECT_FALSE(s.failed) << s.failure;
   Field u = sim.named_field("u"), v = sim.named_field("v");
   Csv gu = read_csv(data_path("ghia1982_u_vertical.csv"));

@@ -13,7 +13,7 @@
 
 #include "kernels/constitutive.hpp"
 #include "kernels/solid_stress.hpp"
-#include "solver/field.hpp"
+#include "core/field.hpp"
 #include "solver/scene.hpp"
 #include "solver/solid.hpp"
 

@@ -17,7 +17,7 @@
 #include "solver/config.hpp"
 #include "solver/extrapolation.hpp"
 #include "solver/option_names.hpp"
-#include "solver/field.hpp"
+#include "core/field.hpp"
 #include "tests/fixtures/zalesak_geometry.hpp"
 
 namespace {

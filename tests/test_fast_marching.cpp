@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "kernels/fast_marching.hpp"
-#include "solver/field.hpp"
+#include "core/field.hpp"
 #include "solver/shape.hpp"
 
 using namespace refmap;

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "solver/csv.hpp"
-#include "solver/field.hpp"
-#include "solver/grid.hpp"
+#include "core/field.hpp"
+#include "core/grid.hpp"
 #include "solver/probes.hpp"
 #include "solver/progress.hpp"
 #include "solver/vtk.hpp"

@@ -18,8 +18,8 @@
 #include "kernels/boundary_kind.hpp"
 #include "kernels/projection.hpp"
 #include "solver/boundary.hpp"
-#include "solver/field.hpp"
-#include "solver/grid.hpp"
+#include "core/field.hpp"
+#include "core/grid.hpp"
 #include "solver/poisson.hpp"
 
 using namespace refmap;

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "kernels/solid_stress.hpp"
-#include "solver/field.hpp"
+#include "core/field.hpp"
 
 using namespace refmap;
 
