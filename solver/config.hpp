@@ -84,8 +84,9 @@ struct SolidsOptions {
   /// Lsq: radius of the plane fit, in cells; the known cells with offsets di^2 + dj^2 <=
   /// floor(lsq_radius^2) enter it. Default 2 sqrt(2) (a 5 x 5 block), half the paper's
   /// 4 sqrt(2): with the paper's radius a stiff solid translating through an inviscid
-  /// fluid gains energy without bound and impacts gain energy (README, Method notes; why
-  /// the wider fit feeds it is not established). Both radii are exact for affine xi.
+  /// fluid gains energy without bound and impacts gain energy (docs/reference_map.md; the
+  /// numbers in results/README.md, "Least-squares fit radius"; why the wider fit feeds it is
+  /// not established). Both radii are exact for affine xi.
   double lsq_radius = 2.0 * 1.4142135623730951;
   double band = 6.0;        ///< w_E, width of the extrapolated band, in cells
   double transition = 3.0;  ///< w_T, half-width of the smoothed Heaviside (eq. 3.5), in cells
@@ -97,7 +98,7 @@ struct SolidsOptions {
   StressForm stress_form = StressForm::Cell;
   /// face values of xi in its advection (eq. 3.3): Central (the paper's), VanLeer or
   /// Superbee (limited upwind: damp grid-scale xi oscillations where the solid moves; all
-  /// three exact for an affine xi; see README, Method notes)
+  /// three exact for an affine xi; see docs/reference_map.md)
   XiFlux xi_advection = XiFlux::VanLeer;
   double solid_cfl = 0.5;   ///< P of section 4: dt <= P dx / sqrt(2 mu_s / rho_s)
   bool reinitialise = true; ///< fast-marching reinitialisation of phi0(xi)

@@ -43,6 +43,9 @@ Contact::Contact(const Config& cfg, double velocity_scale) : g_(cfg.grid) {
   double U = o.velocity_scale > 0.0 ? o.velocity_scale : velocity_scale;
   if (!(U > 0.0)) U = g_.lx() / std::max(cfg.t_end - cfg.t_start, 1e-300);
   P_ = o.stiffness * rho_max * U * U;
+  // the gap written when there is nothing to measure: no other solid's band meets this
+  // one's, there is no other solid, or every side is periodic / contact.walls = false
+  // (docs/output.md)
   sentinel_ = std::hypot(g_.lx(), g_.ly());
   const size_t n = cfg.solids.size();
   gap_solid_.assign(n, sentinel_);
@@ -229,6 +232,9 @@ void Contact::emit(double t, int solid, const char* what, double value, const st
   events_.push_back({t, solid, what, value, with});
 }
 
+// A negative restitution means the solid never moved away from the wall before the next
+// contact started (no rebound); restitution_unfinished (a run ending mid-bounce) is only a
+// lower bound of that bounce's coefficient (docs/output.md).
 void Contact::close_rebound(double t, int solid, int side, WallState& w, const char* event) {
   // restitution = -v_after / v_before: v_before the most negative normal velocity
   // (towards the wall) of the approach, v_after the largest normal velocity from the start

@@ -112,7 +112,7 @@ void print_outputs(const fs::path& dir) {
 }
 
 /// DIR/timings.csv: the phase table of the run in machine-readable form ('#' key: value
-/// lines, then phase,seconds,calls; see README.md "Output").
+/// lines, then phase,seconds,calls; see docs/output.md).
 void write_timings_csv(const fs::path& dir, const refmap::Simulation& sim, const refmap::RunSummary& s,
                        int nthreads, long warmup) {
   std::ostringstream o;

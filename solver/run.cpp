@@ -216,7 +216,8 @@ class RunOutput {
 };
 
 /// steady_tol: max over cells of |u^{n+1} - u^n| / dt (both components) against the
-/// tolerance; keeps the velocity before each step.
+/// tolerance; keeps the velocity before each step. The steady state of this split scheme
+/// depends on dt at first order (docs/method.md), so steady results depend on cfl.
 class SteadyCheck {
  public:
   explicit SteadyCheck(double tol) : tol_(tol) {}
