@@ -150,6 +150,17 @@ std::string read_text(const std::string& path) {
   return text.str();
 }
 
+/// Run options whose checkpoints carry the scene (text, absolute path, --set overrides).
+refmap::RunOptions checkpointed(const std::string& text, const std::string& path, const std::vector<std::string>& sets,
+                                double ck_minutes) {
+  refmap::RunOptions ro;
+  ro.scene_text = text;
+  ro.scene_path = path;
+  ro.sets = sets;
+  ro.checkpoint_minutes = ck_minutes;
+  return ro;
+}
+
 /// Runs sim (fresh or resumed) into dir and reports: the part `run` and `resume` share.
 int execute(refmap::Simulation& sim, const fs::path& dir, refmap::RunOptions ro, int nthreads, long warmup,
             bool quiet) {
@@ -248,11 +259,8 @@ int cmd_run(const std::string& scene, std::string out, int threads, bool threads
   }
 
   refmap::Simulation sim(cfg);
-  refmap::RunOptions ro;
-  ro.scene_text = read_text(scene);
-  ro.scene_path = fs::absolute(scene).lexically_normal().string();
-  ro.sets = sets;
-  ro.checkpoint_minutes = ck_minutes;
+  const refmap::RunOptions ro =
+      checkpointed(read_text(scene), fs::absolute(scene).lexically_normal().string(), sets, ck_minutes);
   return execute(sim, dir, ro, nthreads, warmup, quiet);
 }
 
@@ -278,11 +286,7 @@ int cmd_resume(const std::string& out, int threads, bool threads_given, bool qui
                   nthreads == 1 ? "" : "s");
       std::fflush(stdout);
     }
-    refmap::RunOptions ro;
-    ro.scene_text = sc.text;
-    ro.scene_path = sc.path;
-    ro.sets = sc.sets;
-    ro.checkpoint_minutes = ck_minutes;
+    refmap::RunOptions ro = checkpointed(sc.text, sc.path, sc.sets, ck_minutes);
     ro.resume = &r;
     return execute(sim, dir, ro, nthreads, 0, quiet);
   } catch (const refmap::CheckpointError& e) {
@@ -306,9 +310,10 @@ int main(int argc, char** argv) {
   long warmup = 0;
   CLI::App* run = app.add_subcommand("run", "run a simulation from a scene file");
   run->footer("Writes DIR/scene.toml (the scene, for reproducing the run), VTK frames with a .pvd series,\n"
-              "diagnostics.csv, probe CSVs and timings.csv (wall time per phase). Exit codes: 0 ok,\n"
-              "1 unexpected error, 2 bad command line or scene file (nothing written), 3 the simulation\n"
-              "failed. Scene keys: scenes/README.md.");
+              "diagnostics.csv, probe CSVs, timings.csv (wall time per phase) and checkpoint.bin. Exit codes:\n"
+              "0 ok, 1 a bug, 2 bad command line or scene file (nothing written), 3 the simulation failed\n"
+              "(partial output valid), 130/143 stopped by SIGINT/SIGTERM (continue with refmap resume DIR).\n"
+              "Scene keys: scenes/README.md.");
   run->add_option("scene", scene, "scene file (TOML)")->required()->type_name("SCENE.toml");
   run->add_option("-o,--out", out, "output directory (default: out/<scene name>)")->type_name("DIR");
   CLI::Option* threads_opt =

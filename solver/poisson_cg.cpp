@@ -1,19 +1,42 @@
 // Jacobi-preconditioned CG and multigrid-preconditioned CG; see poisson_cg.hpp.
 #include "solver/poisson_cg.hpp"
 
-#include "solver/option_names.hpp"
-
 #include <cmath>
+#include <initializer_list>
 #include <stdexcept>
 
 #include "kernels/loop.hpp"
+#include "solver/option_names.hpp"
 
 namespace refmap {
 
 namespace {
-void ensure(Field& f, int nx, int ny) {
-  if (f.nx() != nx || f.ny() != ny || f.ng() < 1) f.resize(nx, ny, 1);
+/// The solver's work vectors, sized for an nx x ny operator (kept when they already are).
+void ensure(int nx, int ny, std::initializer_list<Field*> fields) {
+  for (Field* f : fields)
+    if (f->nx() != nx || f->ny() != ny || f->ng() < 1) f->resize(nx, ny, 1);
 }
+/// The start of a CG solve: the scaled right-hand side f, the first residual r = f - L x
+/// and its relative norm; false when there is nothing to solve (st is then complete).
+bool begin(const PoissonOperator& op, const mg::Stencil& s, const Field& rhs, Field& x, Field& f, Field& r,
+           bool record, SolveStats& st, double& bnorm, double& rel) {
+  bnorm = detail::prepare_rhs(op, s, rhs, x, f.view());
+  View xv = x.view();
+  if (!detail::start_solve(s, bnorm, xv, record, st)) return false;
+  rel = std::sqrt(mg::residual(s, xv, f.cview(), r.view())) / bnorm;
+  if (record) st.history.push_back(rel);
+  return true;
+}
+
+/// The end of a CG solve: the pressure's free constant removed, the counts recorded.
+SolveStats finish(const mg::Stencil& s, View xv, SolveStats st, int it, double rel, double tol) {
+  detail::remove_mean(s, xv);
+  st.iterations = it;
+  st.rel_residual = rel;
+  st.converged = rel <= tol;
+  return st;
+}
+
 }  // namespace
 
 // ------------------------------------------------------------------------------------------
@@ -36,10 +59,7 @@ void CGSolver::setup(const PoissonOperator& op) {
   op_ = op;
   build_fine_operator(op, tx_, ty_, invd_);
   const int nx = op.grid.nx, ny = op.grid.ny;
-  ensure(f_, nx, ny);
-  ensure(r_, nx, ny);
-  ensure(p_, nx, ny);
-  ensure(q_, nx, ny);
+  ensure(nx, ny, {&f_, &r_, &p_, &q_});
   ready_ = true;
 }
 
@@ -48,11 +68,9 @@ SolveStats CGSolver::solve(const Field& rhs, Field& x) {
   threads_ = loop_threads(op_.grid.cells(), op_.grid.ny);
   const mg::Stencil s = stencil();
   SolveStats st;
-  const double bnorm = detail::prepare_rhs(op_, s, rhs, x, f_.view());
   View xv = x.view();
-  if (!detail::start_solve(s, bnorm, xv, opt_.record_history, st)) return st;
-  double rel = std::sqrt(mg::residual(s, xv, f_.cview(), r_.view())) / bnorm;
-  if (opt_.record_history) st.history.push_back(rel);
+  double bnorm = 0.0, rel = 0.0;
+  if (!begin(op_, s, rhs, x, f_, r_, opt_.record_history, st, bnorm, rel)) return st;
   int it = 0;
   if (rel > opt_.tol) {
     double rz = mg::jacobi_precondition(s, r_.cview(), p_.view());  // p = z = D^{-1} r
@@ -83,11 +101,7 @@ SolveStats CGSolver::solve(const Field& rhs, Field& x) {
       mg::cg_direction_jacobi(s, r_.cview(), beta, p_.view());
     }
   }
-  detail::remove_mean(s, xv);
-  st.iterations = it;
-  st.rel_residual = rel;
-  st.converged = rel <= opt_.tol;
-  return st;
+  return finish(s, xv, st, it, rel, opt_.tol);
 }
 
 // ------------------------------------------------------------------------------------------
@@ -102,11 +116,7 @@ void MGPCGSolver::setup(const PoissonOperator& op) {
   mg_.setup(op, opt_, /*symmetric=*/true);
   op_ = op;
   const int nx = op.grid.nx, ny = op.grid.ny;
-  ensure(f_, nx, ny);
-  ensure(r_, nx, ny);
-  ensure(p_, nx, ny);
-  ensure(q_, nx, ny);
-  ensure(z_, nx, ny);
+  ensure(nx, ny, {&f_, &r_, &p_, &q_, &z_});
   ready_ = true;
 }
 
@@ -115,11 +125,9 @@ SolveStats MGPCGSolver::solve(const Field& rhs, Field& x) {
   mg_.update_threads();
   const mg::Stencil s = mg_.stencil(0);
   SolveStats st;
-  const double bnorm = detail::prepare_rhs(op_, s, rhs, x, f_.view());
   View xv = x.view();
-  if (!detail::start_solve(s, bnorm, xv, opt_.record_history, st)) return st;
-  double rel = std::sqrt(mg::residual(s, xv, f_.cview(), r_.view())) / bnorm;
-  if (opt_.record_history) st.history.push_back(rel);
+  double bnorm = 0.0, rel = 0.0;
+  if (!begin(op_, s, rhs, x, f_, r_, opt_.record_history, st, bnorm, rel)) return st;
   int it = 0;
   if (rel > opt_.tol) {
     mg_.precondition(r_.cview(), z_.view());
@@ -151,11 +159,7 @@ SolveStats MGPCGSolver::solve(const Field& rhs, Field& x) {
       mg::cg_direction(s, z_.cview(), beta, p_.view());
     }
   }
-  detail::remove_mean(s, xv);
-  st.iterations = it;
-  st.rel_residual = rel;
-  st.converged = rel <= opt_.tol;
-  return st;
+  return finish(s, xv, st, it, rel, opt_.tol);
 }
 
 }  // namespace refmap

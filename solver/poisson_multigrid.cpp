@@ -413,7 +413,7 @@ void MultigridHierarchy::prolong_post_smooth(int l, View x, CView f, double* res
   }
 }
 
-void MultigridHierarchy::vcycle(int l, View x, CView f, double* res2) {
+void MultigridHierarchy::cycle(int l, View x, CView f, bool f_cycle, double* res2) {
   if (l == num_levels() - 1) {
     coarse_solve(l, x, f);
     if (res2) *res2 = mg::residual(stencil(l), x, f, View{});
@@ -424,38 +424,19 @@ void MultigridHierarchy::vcycle(int l, View x, CView f, double* res2) {
   const mg::Stencil sc = stencil(l + 1);
   mg::fill(sc, C.x.view(), 0.0);
   mg::fill_ghosts(sc, C.x.view());
-  vcycle(l + 1, C.x.view(), C.f.cview(), nullptr);
+  // V: one coarse cycle; F: an F-cycle then a V-cycle on the coarse level
+  cycle(l + 1, C.x.view(), C.f.cview(), f_cycle, nullptr);
+  if (f_cycle) cycle(l + 1, C.x.view(), C.f.cview(), false, nullptr);
   prolong_post_smooth(l, x, f, res2);
 }
 
-void MultigridHierarchy::fcycle(int l, View x, CView f, double* res2) {
-  if (l == num_levels() - 1) {
-    coarse_solve(l, x, f);
-    if (res2) *res2 = mg::residual(stencil(l), x, f, View{});
-    return;
-  }
-  Level& C = levels_[l + 1];
-  pre_smooth_restrict(l, x, f);
-  const mg::Stencil sc = stencil(l + 1);
-  mg::fill(sc, C.x.view(), 0.0);
-  mg::fill_ghosts(sc, C.x.view());
-  fcycle(l + 1, C.x.view(), C.f.cview(), nullptr);
-  vcycle(l + 1, C.x.view(), C.f.cview(), nullptr);
-  prolong_post_smooth(l, x, f, res2);
-}
-
-void MultigridHierarchy::cycle(View x, CView f, bool f_cycle, double* res2) {
-  if (f_cycle)
-    fcycle(0, x, f, res2);
-  else
-    vcycle(0, x, f, res2);
-}
+void MultigridHierarchy::cycle(View x, CView f, bool f_cycle, double* res2) { cycle(0, x, f, f_cycle, res2); }
 
 void MultigridHierarchy::precondition(CView r, View z) {
   const mg::Stencil s = stencil(0);
   mg::fill(s, z, 0.0);
   mg::fill_ghosts(s, z);
-  vcycle(0, z, r, nullptr);
+  cycle(0, z, r, false, nullptr);
 }
 
 // ------------------------------------------------------------------------------------------

@@ -96,8 +96,8 @@ class MultigridHierarchy {
   void precondition(CView r, View z);
 
  private:
-  void vcycle(int l, View x, CView f, double* res2);
-  void fcycle(int l, View x, CView f, double* res2);
+  /// One V- or F-cycle from level l down.
+  void cycle(int l, View x, CView f, bool f_cycle, double* res2);
   void smooth(int l, View x, CView f, int sweeps, bool post, double* res2);
   /// Pre-smoothing on level l and the restricted residual into level l+1's f (fused).
   void pre_smooth_restrict(int l, View x, CView f);

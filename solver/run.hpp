@@ -23,6 +23,14 @@ struct RunOptions {
   /// Resuming: the checkpoint, read up to the run's own records (the Simulation has
   /// loaded its state from it); the output directory's files are continued, not replaced.
   CheckpointReader* resume = nullptr;
+
+  /// No output directory, no progress, no summary (tests, benchmarks).
+  static RunOptions silent() {
+    RunOptions o;
+    o.progress = false;
+    o.quiet = true;
+    return o;
+  }
 };
 
 struct RunSummary {

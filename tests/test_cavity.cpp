@@ -28,10 +28,7 @@ CavityErrors run_cavity(const std::string& scene, const std::string& column,
                         const std::vector<std::string>& sets = {}) {
   Config cfg = load_scene(scene_path(scene), sets);
   Simulation sim(cfg);
-  RunOptions ro;
-  ro.progress = false;
-  ro.quiet = true;
-  RunSummary s = run(sim, ro);
+  RunSummary s = run(sim, RunOptions::silent());
   EXPECT_FALSE(s.failed) << s.failure;
   Field u = sim.named_field("u"), v = sim.named_field("v");
   Csv gu = read_csv(data_path("ghia1982_u_vertical.csv"));

@@ -16,6 +16,7 @@
 #include "core/field.hpp"
 #include "solver/scene.hpp"
 #include "solver/solid.hpp"
+#include "tests/fixtures/scene_text.hpp"
 
 using namespace refmap;
 
@@ -184,38 +185,10 @@ TEST(Constitutive, WaveModulusOfSimpleShear) {
 
 namespace {
 
-const char* kDiscScene = R"(
-[domain]
-lx = 1.0
-[grid]
-nx = 32
-ny = 32
-[fluid]
-viscosity = 0.01
-[boundary]
-left = "no_slip"
-right = "no_slip"
-bottom = "no_slip"
-top = "no_slip"
-[time]
-end = 1.0
-[[solid]]
-name = "soft"
-shape = "circle"
-center = [0.28, 0.5]
-radius = 0.15
-mu_s = 0.7
-density = 1.0
-[[solid]]
-name = "stiffening"
-shape = "circle"
-center = [0.72, 0.5]
-radius = 0.15
-mu_s = 0.7
-density = 1.0
-model = "strain_stiffening"
-c3 = 1.3
-)";
+const std::string kDiscScene = refmap::testing::box_scene(
+    32, refmap::testing::kWalls,
+    refmap::testing::disc_toml("soft", 0.28, 0.5, 0.15, 0.7) +
+        refmap::testing::disc_toml("stiffening", 0.72, 0.5, 0.15, 0.7, "model = \"strain_stiffening\"\nc3 = 1.3\n"));
 
 }  // namespace
 

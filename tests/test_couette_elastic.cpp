@@ -27,10 +27,7 @@ double couette_error(int cells_per_unit) {
                           {"grid.ny=" + std::to_string(2 * cells_per_unit),
                            "domain.lx=" + std::to_string(8 * dx), "domain.ly=2.0"});
   Simulation sim(cfg);
-  RunOptions ro;
-  ro.progress = false;
-  ro.quiet = true;
-  RunSummary r = run(sim, ro);
+  RunSummary r = run(sim, RunOptions::silent());
   EXPECT_FALSE(r.failed) << r.failure;
   EXPECT_NEAR(sim.time(), 4.8, 1e-9);
   Csv ref = read_csv(data_path("couette_elastic_startup.csv"));

@@ -11,8 +11,10 @@
 #include "solver/memory_estimate.hpp"
 #include "solver/scene.hpp"
 #include "solver/simulation.hpp"
+#include "tests/fixtures/scene_text.hpp"
 
 using namespace refmap;
+using namespace refmap::testing;
 
 namespace {
 
@@ -42,31 +44,7 @@ TEST(MemoryEstimate, FieldBytesMatchTheFieldLayout) {
 
 TEST(MemoryEstimate, MatchesTheResidentMemoryOfASimulation) {
   // a 512^2 cavity with one elastic disc: about 80 MB, far above allocator noise
-  const std::string scene = R"(
-[domain]
-lx = 1.0
-ly = 1.0
-[grid]
-nx = 512
-ny = 512
-[fluid]
-density = 1.0
-viscosity = 0.01
-[boundary]
-left = "no_slip"
-right = "no_slip"
-bottom = "no_slip"
-top = { type = "moving_wall", velocity = 1.0 }
-[time]
-end = 1.0
-[[solid]]
-name = "disc"
-shape = "circle"
-center = [0.5, 0.5]
-radius = 0.2
-mu_s = 1.0
-density = 1.0
-)";
+  const std::string scene = box_scene(512, kLidDriven, disc_toml("disc", 0.5, 0.5, 0.2));
   Config cfg = load_scene_string(scene, "memory.toml", {});
   const MemoryEstimate est = estimate_memory(cfg);
   const std::size_t before = resident_bytes();

@@ -11,6 +11,7 @@
 
 #include "solver/option_names.hpp"
 #include "solver/scene.hpp"
+#include "tests/fixtures/scene_text.hpp"
 #include "solver/scene_keys.hpp"
 
 namespace refmap {
@@ -19,26 +20,7 @@ namespace {
 const char* kBegin = "<!-- keys:begin -->\n";
 const char* kEnd = "<!-- keys:end -->";
 
-const char* kBase = R"(
-[domain]
-lx = 1.0
-
-[grid]
-nx = 16
-ny = 16
-
-[fluid]
-viscosity = 0.01
-
-[boundary]
-left = "no_slip"
-right = "no_slip"
-bottom = "no_slip"
-top = { type = "moving_wall", velocity = 1.0 }
-
-[time]
-end = 1.0
-)";
+const std::string kBase = testing::box_scene(16, testing::kLidDriven);
 
 std::string error_of(const std::vector<std::string>& sets) {
   try {

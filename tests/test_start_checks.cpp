@@ -9,25 +9,19 @@
 #include <string>
 
 #include "solver/scene.hpp"
+#include "tests/fixtures/scene_text.hpp"
 
 using refmap::load_scene_string;
 using refmap::SceneError;
+using namespace refmap::testing;
 
 namespace {
 
 std::string scene(const std::string& boundary, const std::string& extra, int n = 32) {
-  std::ostringstream o;  // (a stream: GCC 12 warns falsely on a chain of string +)
-  o << "[domain]\nlx = 1.0\n[grid]\nnx = " << n << "\nny = " << n
-    << "\n[fluid]\ndensity = 1.0\nviscosity = 0.01\n[boundary]\n" << boundary << "[time]\nend = 1.0\n" << extra;
-  return o.str();
+  return box_scene(n, boundary, extra);
 }
-const std::string kWalls = "left = \"no_slip\"\nright = \"no_slip\"\nbottom = \"no_slip\"\ntop = \"no_slip\"\n";
-const std::string kPeriodic = "left = \"periodic\"\nright = \"periodic\"\nbottom = \"periodic\"\ntop = \"periodic\"\n";
 
-std::string disc(const std::string& name, double cx, double cy, double r) {
-  return "[[solid]]\nname = \"" + name + "\"\nshape = \"circle\"\ncenter = [" + std::to_string(cx) + ", " +
-         std::to_string(cy) + "]\nradius = " + std::to_string(r) + "\nmu_s = 1.0\ndensity = 1.0\n";
-}
+std::string disc(const std::string& name, double cx, double cy, double r) { return disc_toml(name, cx, cy, r); }
 
 /// The message of the SceneError that loading `text` throws ("" if it loads).
 std::string error_of(const std::string& text) {

@@ -21,6 +21,8 @@
 #include <thread>
 #include <vector>
 
+#include "tests/fixtures/scene_text.hpp"
+
 #include <spawn.h>
 #include <fcntl.h>
 #include <sys/wait.h>
@@ -29,6 +31,7 @@
 extern char** environ;
 
 namespace fs = std::filesystem;
+using namespace refmap::testing;
 
 namespace {
 
@@ -72,6 +75,17 @@ Result wait_for(pid_t pid, const fs::path& log) {
 }
 
 Result run(const std::vector<std::string>& args, const fs::path& log) { return wait_for(spawn(args, log), log); }
+
+/// Waits (up to a minute) until a running refmap's diagnostics.csv holds more than
+/// `bytes` (its rows reach the file about once a wall second).
+void wait_for_diagnostics(const fs::path& f, std::uintmax_t bytes) {
+  const auto t0 = std::chrono::steady_clock::now();
+  while (std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60)) {
+    std::error_code ec;
+    if (fs::file_size(f, ec) > bytes && !ec) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
 
 /// diagnostics.csv without its wall_time column (the one value that differs by nature).
 std::string diagnostics_without_wall_time(const fs::path& f) {
@@ -125,12 +139,7 @@ TEST_F(Survival, InterruptedAndResumedRunIsBitIdentical) {
   const pid_t pid = spawn(args(B.string()), dir_ / "b");
   ASSERT_GT(pid, 0);
   // stop it part-way: once some diagnostics rows (flushed about once a wall second) are on disk
-  const auto t0 = std::chrono::steady_clock::now();
-  while (std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60)) {
-    std::error_code ec;
-    if (fs::file_size(B / "diagnostics.csv", ec) > 20000 && !ec) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  wait_for_diagnostics(B / "diagnostics.csv", 20000);
   kill(pid, SIGINT);
   const Result stopped = wait_for(pid, dir_ / "b");
   ASSERT_EQ(stopped.code, 130) << "the run ended before the signal, or did not stop cleanly: " << stopped.err;
@@ -167,12 +176,7 @@ TEST_F(Survival, SigtermWritesEverythingOfTheStateReached) {
   const pid_t pid = spawn({"run", kScenes + "lid_driven_cavity_re100.toml", "--out", out.string(), "--threads", "1",
                            "--quiet"},
                           dir_ / "t");
-  const auto t0 = std::chrono::steady_clock::now();
-  while (std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60)) {
-    std::error_code ec;
-    if (fs::file_size(out / "diagnostics.csv", ec) > 5000 && !ec) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  wait_for_diagnostics(out / "diagnostics.csv", 5000);
   kill(pid, SIGTERM);
   const Result r = wait_for(pid, dir_ / "t");
   ASSERT_EQ(r.code, 143) << r.err;
@@ -223,34 +227,9 @@ TEST_F(Survival, BlowUpIsExit3NamingStepAndTime) {
 
 TEST_F(Survival, SolidCarriedIntoAPeriodicSideIsExit3) {
   // a disc translating with a uniform flow in a periodic box reaches the right side
-  const std::string scene = R"(
-[domain]
-lx = 1.0
-[grid]
-nx = 48
-ny = 48
-[fluid]
-density = 1.0
-viscosity = 0.0
-[boundary]
-left = "periodic"
-right = "periodic"
-bottom = "periodic"
-top = "periodic"
-[initial]
-velocity = "uniform"
-u = 1.0
-[time]
-end = 1.0
-[[solid]]
-name = "traveller"
-shape = "circle"
-center = [0.5, 0.5]
-radius = 0.15
-mu_s = 1.0
-density = 1.0
-u = 1.0
-)";
+  const std::string scene =
+      box_scene(48, kPeriodic, "[initial]\nvelocity = \"uniform\"\nu = 1.0\n" +
+                                   disc_toml("traveller", 0.5, 0.5, 0.15, 1.0, "u = 1.0\n"), 0.0);
   std::ofstream(dir_ / "periodic.toml") << scene;
   const Result r = run({"run", (dir_ / "periodic.toml").string(), "--out", (dir_ / "p").string(), "--quiet"}, dir_ / "p");
   EXPECT_EQ(r.code, 3) << r.err;

@@ -32,10 +32,7 @@ XiError rotate(const std::string& method, const std::string& xi_advection = "van
   for (int j = 0; j < cfg.grid.ny; ++j)
     for (int i = 0; i < cfg.grid.nx; ++i)
       if (s0.shape().phi0(cfg.grid.xc(i), cfg.grid.yc(j)) < 0.0) cells.emplace_back(i, j);
-  RunOptions ro;
-  ro.progress = false;
-  ro.quiet = true;
-  RunSummary r = run(sim, ro);
+  RunSummary r = run(sim, RunOptions::silent());
   EXPECT_FALSE(r.failed) << r.failure;
   EXPECT_NEAR(sim.time(), 1.0, 1e-12);
   const Solid& s = *sim.solids().at(0);
