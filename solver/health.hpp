@@ -9,7 +9,15 @@ class Simulation;
 
 /// "" if the state after a step of size dt is healthy, else a message naming the step,
 /// time and cell: non-finite u, v or p; a collapsed time step; or a face divergence that
-/// changes a cell's volume by more than 1% per step (the projection failed).
+/// changes a cell's volume by more than 1% per step (the projection failed); a folded
+/// reference map (check_reference_maps).
 std::string check_health(const Simulation& sim, double dt);
+
+/// "" unless some solid's reference map is folded: det grad xi <= 0 (central differences,
+/// as the stress kernel takes them, eq. 3.1) in a cell with phi < 0. The deformation
+/// gradient F = (grad xi)^{-1} then has det F <= 0 - the material has passed through
+/// itself - and the stress of eq. (2.9) is meaningless; the message names the solid, the
+/// global cell (i, j), x, y, the step and time.
+std::string check_reference_maps(const Simulation& sim);
 
 }  // namespace refmap
