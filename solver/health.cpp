@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "solver/simulation.hpp"
+#include "solver/solid.hpp"
 
 namespace refmap {
 
@@ -48,6 +49,45 @@ std::string check_health(const Simulation& sim, double dt) {
                   worst * dt, wi, wj, g.xc(wi), g.yc(wj), nstep, t, sim.last_poisson_iterations(),
                   sim.last_poisson_residual());
     return buf;
+  }
+  return {};
+}
+
+std::string check_reference_maps(const Simulation& sim) {
+  const Grid& g = sim.grid();
+  const double inv2 = 0.5 / g.dx;
+  for (const auto& sp : sim.solids()) {
+    const Solid& s = *sp;
+    const Field &xx = s.xi_x(), &xy = s.xi_y(), &phi = s.phi();
+    // the gradient the stress kernel uses (kernels/solid_stress.hpp, cell_stress): central
+    // differences of xi (eq. 3.1); only cells inside the solid (phi < 0) count, the band's
+    // extrapolated xi may fold without harm where (1 - H) is small
+    double worst = 0.0;
+    int wi = -1, wj = -1;
+    long folded = 0;
+    for (int j = 0; j < s.nj(); ++j)
+      for (int i = 0; i < s.ni(); ++i) {
+        if (!(phi(i, j) < 0.0)) continue;
+        const double gxx = (xx(i + 1, j) - xx(i - 1, j)) * inv2;
+        const double gxy = (xx(i, j + 1) - xx(i, j - 1)) * inv2;
+        const double gyx = (xy(i + 1, j) - xy(i - 1, j)) * inv2;
+        const double gyy = (xy(i, j + 1) - xy(i, j - 1)) * inv2;
+        const double det = gxx * gyy - gxy * gyx;  // 1 / J of the deformation; NaN is left to the check above
+        if (det <= 0.0) {
+          ++folded;
+          if (wi < 0 || det < worst) { worst = det; wi = i; wj = j; }
+        }
+      }
+    if (folded > 0) {
+      const int gi = s.i0() + wi, gj = s.j0() + wj;
+      char buf[384];
+      std::snprintf(buf, sizeof buf,
+                    "reference map folded in solid '%s': det grad xi = %.3g <= 0 at cell (%d, %d), "
+                    "x = %.6g, y = %.6g (phi = %.3g; %ld cell%s folded), step %ld, t = %.6g",
+                    s.spec().name.c_str(), worst, gi, gj, g.xc(gi), g.yc(gj), phi(wi, wj), folded,
+                    folded == 1 ? "" : "s", sim.steps(), sim.time());
+      return buf;
+    }
   }
   return {};
 }

@@ -12,4 +12,13 @@ class Simulation;
 /// changes a cell's volume by more than 1% per step (the projection failed).
 std::string check_health(const Simulation& sim, double dt);
 
+/// "" unless some solid's reference map is folded: det grad xi <= 0 (central differences,
+/// as the stress kernel takes them, eq. 3.1) in a cell with phi < 0. The deformation
+/// gradient F = (grad xi)^{-1} then has det F <= 0 - the material has passed through
+/// itself - and the stress of eq. (2.9) is meaningless; the message names the solid, the
+/// global cell (i, j), x, y, the step and time. The run loop calls it after check_health and
+/// the kinetic-energy check, so a step that blows up is reported as the blow-up it is and a
+/// fold as the first sign of failure only while the energy is still bounded.
+std::string check_reference_maps(const Simulation& sim);
+
 }  // namespace refmap

@@ -375,6 +375,7 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
     try {
       std::string bad = check_health(sim, dt);
       if (bad.empty()) bad = blowup.check(sim);
+      if (bad.empty()) bad = check_reference_maps(sim);
       if (!bad.empty()) {
         out.row(last_dt, wall_seconds_since(wall0));
         fail(bad);

@@ -241,7 +241,7 @@ std::vector<KeyDef> build_keys() {
       choice<XiFlux>("solids", "xi_advection", dso.xi_advection,
                      "face values of ξ in its advection (eq. 3.3): second-order central (the paper's) or "
                      "Superbee / van Leer limited upwind"),
-      num("solids", "solid_cfl", dso.solid_cfl, in(0, true, 2, false),
+      num("solids", "solid_cfl", dso.solid_cfl, in(0, true, 8, false),  // above ~1 only for the stability study (bench/stability.py)
           "P of the solid time-step limit dt <= P dx / sqrt(2 mu_s / rho_s)"),
       boolean("solids", "reinitialise", dso.reinitialise, "reinitialise phi0(xi) by fast marching every step"),
       only(num("solids", "pde_tol", dso.pde_tol, gt(0),

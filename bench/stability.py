@@ -1,0 +1,393 @@
+#!/usr/bin/env python3
+"""Where each method fails: stability and robustness maps (issue 13).
+
+Runs build/refmap on coarse grids with --set overrides (one thread per run, --jobs runs at
+once) and classifies every run from its own exit code, stderr and diagnostics.csv:
+
+  stable      exit 0 and accurate: area drift <= 1 % (resolution sweep: the area error
+              <= 1 %), total energy (kinetic + elastic) never more than 1 % above its
+              start (every run here is viscous, so it may only fall; it oscillates by
+              ~15 % between kinetic and elastic on these grids, so a rise above the running
+              minimum would not separate stable from unstable)
+  inaccurate  exit 0 but one of those measures over its bound (the measure is recorded)
+  stopped     exit 3: a health check stopped the run (the cause is the message on stderr:
+              folded reference map, kinetic-energy blow-up, solid vanished, ...), or exit 2
+              (the scene was refused at the start, e.g. a solid too small for its band)
+  crashed     any other exit code (must not occur)
+
+Sweeps (scene scenes/disc_tgv.toml, a soft disc R = 0.2 in a decaying Taylor-Green
+vortex, free-slip box):
+  a  solid time-step factor P (solids.solid_cfl; dt <= P dx / sqrt(2 mu_s / rho_s)) against
+     the stiffness mu_s / rho_s = 1e2 .. 1e5 (the solid limit then binds, not the
+     advective one), 400 steps, for stress_discretisation x conservative x xi_advection
+  b  flow amplitude A / A0 (initial.amplitude, A0 = 0.05 * 2 pi as the scene) until the map
+     folds, the area drifts or the run stops, 64 x 64 (R/dx = 12.8), to t = 2, for the extrapolations lsq (radius
+     2.83 and 5.66) and pde, and lsq 2.83 with the non-conservative form; the strain reached
+     is the largest principal stretch lambda from the largest normal stress
+     sigma_max = mu_s (tr b - 2) assuming det b = 1: tr b = lambda^2 + lambda^-2, over the
+     rows before the failing state
+  e  resolution R / dx = 2 .. 16 (grid.nx = ny = 5 R/dx) at A0, to t = 2, for the same
+     extrapolations; lost when the area error exceeds 10 % or the level set empties
+
+For each method the limit is the largest swept value still `stable` below the first value
+that is not (sweep e: the smallest R/dx from which every finer grid is stable).
+
+Usage: python3 bench/stability.py [--quick] [--bin build/refmap] [--out results] [--jobs 2]
+Writes <out>/stability.csv, <out>/stability_limits.csv, <out>/stability_<sweep>.png; the raw
+runs go to <raw> (default /tmp/refmap_stability, not kept).
+"""
+from __future__ import annotations
+
+import argparse
+import concurrent.futures as cf
+import csv
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SCENE = os.path.join(ROOT, "scenes", "disc_tgv.toml")
+A0 = 0.3141592653589793  # the scene's amplitude, U0 2 pi with U0 = 0.05
+R = 0.2                  # the disc's radius in the scene
+MU_S = 0.5               # the scene's mu_s (rho_s = 1)
+
+COLS = ["sweep", "scene", "method", "stress_discretisation", "conservative", "xi_advection",
+        "extrapolation", "lsq_radius", "param", "value", "param2", "value2", "outcome",
+        "t_event", "step_event", "measure", "measure_value", "cause", "max_stretch",
+        "min_dt", "p_effective", "poisson_iter_mean", "poisson_iter_max", "steps", "wall_s"]
+
+
+# ------------------------------------------------------------------ one run
+def run_one(job, binary, raw):
+    out = os.path.join(raw, job["tag"])
+    shutil.rmtree(out, ignore_errors=True)
+    cmd = [binary, "run", SCENE, "-o", out, "-j", "1", "-q"]
+    for s in job["sets"]:
+        cmd += ["--set", s]
+    t0 = time.time()
+    p = subprocess.run(cmd, capture_output=True, text=True,
+                       env=dict(os.environ, OMP_NUM_THREADS="1"))
+    job = dict(job)
+    job["rc"] = p.returncode
+    job["stderr"] = p.stderr.strip()
+    job["wall_s"] = time.time() - t0
+    job["diag"] = read_diag(os.path.join(out, "diagnostics.csv"))
+    return job
+
+
+def read_diag(path):
+    if not os.path.exists(path):
+        return {}
+    with open(path) as f:
+        rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))]
+    if len(rows) < 2:
+        return {}
+    head, data = rows[0], rows[1:]
+    arr = np.array([[float(x) for x in r] for r in data if len(r) == len(head)])
+    return {h: arr[:, k] for k, h in enumerate(head)}
+
+
+def stretch_from_sigma(sig, mu):
+    """lambda_max from mu (tr b - 2) with det b = 1 (tr b = l^2 + l^-2)."""
+    tr = 2.0 + abs(sig) / mu
+    l2 = 0.5 * (tr + math.sqrt(max(tr * tr - 4.0, 0.0)))
+    return math.sqrt(l2)
+
+
+# ------------------------------------------------------------------ classification
+def classify(job):
+    """(outcome, t_event, step_event, measure, value, cause) from the run's own records."""
+    rc, d = job["rc"], job["diag"]
+    if rc == 3 or rc == 2:
+        msg = job["stderr"].splitlines()
+        msg = next((m for m in msg if "error" in m), msg[0] if msg else "")
+        m = re.search(r"failed after (\d+) steps at t = ([0-9.eE+-]+): (.*)", msg)
+        step, t, cause = (int(m.group(1)), float(m.group(2)), m.group(3)) if m else (0, 0.0, msg)
+        cause = cause.replace("refmap: error: ", "")
+        short = ("folded map" if "folded" in cause else
+                 "energy blow-up" if "kinetic energy grew" in cause or "collapsed" in cause else
+                 "non-finite" if "non-finite" in cause else
+                 "projection failed" if "face divergence" in cause else
+                 "solid vanished" if "vanish" in cause else
+                 "reached side" if "side" in cause else
+                 "rejected at start" if rc == 2 else "other")
+        return "stopped", t, step, short, float("nan"), cause
+    if rc != 0:
+        return "crashed", float("nan"), 0, f"exit {rc}", float("nan"), job["stderr"][-300:]
+    if not d:
+        return "crashed", float("nan"), 0, "no diagnostics.csv", float("nan"), ""
+    t, step = d["time"], d["step"]
+    area = d["solid0_area"]
+    a_exact = math.pi * R * R
+    if job["sweep"] == "e":
+        err = np.abs(area - a_exact) / a_exact
+        k = int(np.argmax(err > 0.01)) if np.any(err > 0.01) else -1
+        if k >= 0:
+            lost = np.any(err > 0.10)
+            return ("inaccurate", t[k], int(step[k]), "area error > 10 % (lost)" if lost else "area error",
+                    float(err.max()), "")
+        return "stable", float("nan"), 0, "area error", float(err.max()), ""
+    drift = np.abs(area - area[0]) / area[0]
+    e = d["total_energy"]
+    rise = e / e[0] - 1.0  # a viscous run may never exceed its initial total energy
+    bad_a = np.argmax(drift > 0.01) if np.any(drift > 0.01) else -1
+    bad_e = np.argmax(rise > 0.01) if np.any(rise > 0.01) else -1
+    if bad_a >= 0 or bad_e >= 0:
+        ka = bad_a if bad_a >= 0 else 10**9
+        ke = bad_e if bad_e >= 0 else 10**9
+        if ke <= ka:
+            return "inaccurate", t[ke], int(step[ke]), "energy rise", float(rise.max()), ""
+        return "inaccurate", t[ka], int(step[ka]), "area drift", float(drift.max()), ""
+    return "stable", float("nan"), 0, "area drift", float(drift.max()), ""
+
+
+def result_row(job):
+    outcome, tev, sev, meas, val, cause = classify(job)
+    d = job["diag"]
+    mu = job.get("mu_s", MU_S)
+    row = {c: "" for c in COLS}
+    row.update({k: job.get(k, "") for k in ["sweep", "method", "stress_discretisation", "conservative",
+                                            "xi_advection", "extrapolation", "lsq_radius", "param",
+                                            "value", "param2", "value2"]})
+    row.update(scene="disc_tgv", outcome=outcome, t_event=tev, step_event=sev, measure=meas,
+               measure_value=val, cause=cause, wall_s=round(job["wall_s"], 3))
+    if d:
+        # the largest stretch of the healthy states: a stopped run's last row is the failing state
+        sig = d["solid0_sigma_max"]
+        if outcome == "stopped" and len(sig) > 2:
+            sig = sig[:-1]
+        row["max_stretch"] = stretch_from_sigma(float(np.max(sig)), mu)
+        dts = d["dt"][1:] if len(d["dt"]) > 1 else d["dt"]
+        row["min_dt"] = float(np.min(dts))
+        nx = job.get("nx", 32)
+        # P of the first step (the solid at rest): dt sqrt(2 mu_s / rho_s) / dx; below the
+        # swept P where the advective or viscous limit binds instead
+        row["p_effective"] = float(dts[0]) * math.sqrt(2.0 * mu) * nx
+        pit = d["poisson_iterations"][1:]
+        if len(pit):
+            row["poisson_iter_mean"] = float(np.mean(pit))
+            row["poisson_iter_max"] = int(np.max(pit))
+        row["steps"] = int(d["step"][-1])
+    return row
+
+
+# ------------------------------------------------------------------ the sweeps
+def method_sets(stress, cons, xi):
+    return [f'solids.stress_discretisation="{stress}"', f"solids.conservative={'true' if cons else 'false'}",
+            f'solids.xi_advection="{xi}"']
+
+
+EXTRAPS = [("lsq r=2.83", "lsq", 2.83, True), ("lsq r=5.66", "lsq", 5.66, True), ("pde", "pde", "", True),
+           ("lsq r=2.83 non-conservative", "lsq", 2.83, False)]
+
+
+def extrap_sets(ex, r, cons):
+    s = [f'solids.extrapolation="{ex}"', f"solids.conservative={'true' if cons else 'false'}"]
+    if ex == "lsq":
+        s.append(f"solids.lsq_radius={r}")
+    return s
+
+
+def jobs_a(quick):
+    if quick:
+        methods = [("cell", True, "vanleer"), ("face", True, "vanleer"), ("cell", False, "vanleer"),
+                   ("cell", True, "central")]
+        stiff, ps = [1e2, 1e4], [0.5, 1, 2, 4, 8]
+    else:
+        methods = [(s, c, x) for s in ("cell", "face") for c in (True, False)
+                   for x in ("central", "vanleer", "superbee")]
+        stiff, ps = [1e2, 1e3, 1e4, 1e5], [0.25, 0.5, 0.75, 1, 1.5, 2, 3, 4, 6, 8]
+    out = []
+    for (s, c, x) in methods:
+        name = f"{s}/{'cons' if c else 'noncons'}/{x}"
+        for mu in stiff:
+            for p in ps:
+                out.append(dict(sweep="a", method=name, stress_discretisation=s, conservative=c,
+                                xi_advection=x, extrapolation="lsq", lsq_radius=2.83, param="solid_cfl",
+                                value=p, param2="mu_s/rho_s", value2=mu, mu_s=mu,
+                                tag=f"a/{s}_{int(c)}_{x}_mu{mu:g}_P{p:g}",
+                                sets=method_sets(s, c, x) + ["grid.nx=32", "grid.ny=32", "time.end=100",
+                                                             "time.max_steps=400", "output.vtk=false",
+                                                             f"solid.0.mu_s={mu:g}", f"solids.solid_cfl={p:g}"]))
+    return out
+
+
+def jobs_b(quick):
+    amps = [1, 2, 4, 8, 16] if quick else [1, 2, 3, 4, 6, 8, 10, 12, 16, 24, 32]
+    out = []
+    for (name, ex, r, cons) in EXTRAPS:
+        for a in amps:
+            out.append(dict(sweep="b", method=name, stress_discretisation="cell", conservative=cons,
+                            xi_advection="vanleer", extrapolation=ex, lsq_radius=r, param="amplitude/A0",
+                            value=a, tag=f"b/{name.replace(' ', '_').replace('=', '')}_A{a}",
+                            sets=extrap_sets(ex, r, cons) + ["grid.nx=64", "grid.ny=64", "time.end=2.0",
+                                                             "output.vtk=false", f"initial.amplitude={A0 * a!r}"]))
+    return out
+
+
+def jobs_e(quick):
+    res = [2, 4, 8, 16] if quick else [2, 3, 4, 6, 8, 12, 16]
+    out = []
+    for (name, ex, r, cons) in EXTRAPS[:3]:
+        for n in res:
+            nx = int(round(n / R))
+            out.append(dict(sweep="e", method=name, stress_discretisation="cell", conservative=cons,
+                            xi_advection="vanleer", extrapolation=ex, lsq_radius=r, param="R/dx", value=n,
+                            nx=nx, tag=f"e/{name.replace(' ', '_').replace('=', '')}_n{n}",
+                            sets=extrap_sets(ex, r, cons) + [f"grid.nx={nx}", f"grid.ny={nx}", "time.end=2.0",
+                                                             "output.vtk=false"]))
+    return out
+
+
+# ------------------------------------------------------------------ limits and charts
+def limits(rows):
+    """Per sweep x method (x value2): the limit as documented in the module string."""
+    out = []
+    keys = sorted({(r["sweep"], r["method"], r["value2"]) for r in rows}, key=str)
+    for (sw, m, v2) in keys:
+        rs = sorted([r for r in rows if r["sweep"] == sw and r["method"] == m and r["value2"] == v2],
+                    key=lambda r: float(r["value"]))
+        if sw == "e":  # smallest R/dx from which every finer grid is stable
+            lim = None
+            for r in reversed(rs):
+                if r["outcome"] != "stable":
+                    break
+                lim = r["value"]
+            first_bad = next((r for r in reversed(rs) if r["outcome"] != "stable"), None)
+        else:
+            lim, first_bad = None, None
+            for r in rs:
+                if r["outcome"] != "stable":
+                    first_bad = r
+                    break
+                lim = r["value"]
+        out.append(dict(sweep=sw, method=m, param=rs[0]["param"], param2=rs[0]["param2"], value2=v2,
+                        limit=lim if lim is not None else "none",
+                        first_failure=first_bad["value"] if first_bad else "",
+                        failure_outcome=first_bad["outcome"] if first_bad else "",
+                        failure_measure=first_bad["measure"] if first_bad else "",
+                        stretch_at_failure=first_bad["max_stretch"] if first_bad else ""))
+    return out
+
+
+COLOURS = {"stable": "tab:green", "inaccurate": "tab:orange", "stopped": "tab:red", "crashed": "black"}
+
+
+def chart(rows, lims, sweep, path, title, xlabel, logx=False, by_value2=False):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rs = [r for r in rows if r["sweep"] == sweep]
+    if not rs:
+        return
+    methods = list(dict.fromkeys(r["method"] for r in rs))
+    if by_value2:
+        v2s = sorted({r["value2"] for r in rs})
+        fig, axes = plt.subplots(1, len(v2s), figsize=(3.2 * len(v2s) + 1.5, 0.45 * len(methods) + 1.8),
+                                 sharey=True, squeeze=False)
+        panels = [(axes[0][k], v2) for k, v2 in enumerate(v2s)]
+    else:
+        fig, ax = plt.subplots(figsize=(8, 0.5 * len(methods) + 1.8))
+        panels = [(ax, "")]
+    for ax, v2 in panels:
+        for k, m in enumerate(methods):
+            sel = [r for r in rs if r["method"] == m and r["value2"] == v2]
+            for r in sel:
+                ax.scatter(float(r["value"]), k, c=COLOURS[r["outcome"]], s=45, zorder=3)
+                if sweep == "b" and r["outcome"] != "stable" and r["max_stretch"] != "":
+                    ax.annotate(f"{float(r['max_stretch']):.1f}", (float(r["value"]), k), fontsize=6,
+                                xytext=(0, 6), textcoords="offset points", ha="center")
+            lim = next((l for l in lims if l["sweep"] == sweep and l["method"] == m and l["value2"] == v2), None)
+            if lim and lim["limit"] != "none":
+                ax.scatter(float(lim["limit"]), k, marker="s", s=140, facecolors="none", edgecolors="k", zorder=4)
+        if logx:
+            ax.set_xscale("log")
+        ax.set_yticks(range(len(methods)))
+        ax.set_yticklabels(methods, fontsize=7)
+        ax.set_xlabel(xlabel)
+        if by_value2:
+            ax.set_title(f"mu_s/rho_s = {float(v2):g}", fontsize=9)
+        ax.grid(alpha=0.3)
+    for o, c in COLOURS.items():
+        panels[0][0].scatter([], [], c=c, label=o)
+    panels[0][0].scatter([], [], marker="s", facecolors="none", edgecolors="k", label="limit (largest stable)")
+    fig.legend(loc="lower center", ncol=5, fontsize=7)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout(rect=(0, 0.07, 1, 0.95))
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+# ------------------------------------------------------------------ main
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--bin", default=os.path.join(ROOT, "build", "refmap"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "results"))
+    ap.add_argument("--raw", default="/tmp/refmap_stability")
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--sweeps", default="a,b,e")
+    args = ap.parse_args()
+    sweeps = args.sweeps.split(",")
+    jobs = []
+    for sw, fn in [("a", jobs_a), ("b", jobs_b), ("e", jobs_e)]:
+        if sw in sweeps:
+            jobs += fn(args.quick)
+    t0 = time.time()
+    rows = []
+    with cf.ThreadPoolExecutor(max_workers=args.jobs) as ex:
+        futs = [ex.submit(run_one, j, args.bin, args.raw) for j in jobs]
+        for k, f in enumerate(cf.as_completed(futs)):
+            rows.append(result_row(f.result()))
+            if (k + 1) % 20 == 0:
+                print(f"  {k + 1}/{len(jobs)} runs, {time.time() - t0:.0f} s", flush=True)
+    order = {id(j): k for k, j in enumerate(jobs)}
+    rows.sort(key=lambda r: (r["sweep"], r["method"], float(r["value2"] or 0), float(r["value"])))
+    os.makedirs(args.out, exist_ok=True)
+    mode = "quick" if args.quick else "full"
+    header = [f"# refmap stability study ({mode}), bench/stability.py; {len(rows)} runs in "
+              f"{time.time() - t0:.0f} s with {args.jobs} parallel single-thread runs; "
+              f"date {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}"]
+    with open(os.path.join(args.out, "stability.csv"), "w", newline="") as f:
+        for h in header:
+            f.write(h + "\n")
+        w = csv.DictWriter(f, COLS)
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
+    lims = limits(rows)
+    with open(os.path.join(args.out, "stability_limits.csv"), "w", newline="") as f:
+        for h in header:
+            f.write(h + "\n")
+        w = csv.DictWriter(f, list(lims[0].keys()))
+        w.writeheader()
+        for l in lims:
+            w.writerow({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in l.items()})
+    chart(rows, lims, "a", os.path.join(args.out, "stability_solid_cfl.png"),
+          "solid time-step factor P (dt = P dx / sqrt(2 mu_s/rho_s)), disc_tgv 32^2, 400 steps",
+          "P (solids.solid_cfl)", logx=True, by_value2=True)
+    chart(rows, lims, "b", os.path.join(args.out, "stability_deformation.png"),
+          "large deformation: disc_tgv 64^2 to t = 2, flow amplitude raised (labels: largest stretch before failure)",
+          "amplitude / A0 (A0 = 0.1 pi)", logx=True)
+    chart(rows, lims, "e", os.path.join(args.out, "stability_resolution.png"),
+          "resolution: disc_tgv to t = 2, cells across the disc's radius", "R / dx", logx=True)
+    counts = {o: sum(r["outcome"] == o for r in rows) for o in COLOURS}
+    print(f"{len(rows)} runs in {time.time() - t0:.0f} s: {counts}")
+    for l in lims:
+        print(f"  {l['sweep']} {l['method']:<32} {l['param2']} {l['value2']!s:<8} limit {l['param']} = {l['limit']}"
+              f"  (first failure {l['first_failure']} {l['failure_outcome']} {l['failure_measure']})")
+    if counts["crashed"]:
+        print("CRASHED runs:")
+        for r in rows:
+            if r["outcome"] == "crashed":
+                print("  ", r["sweep"], r["method"], r["value"], r["value2"], r["cause"])
+
+
+if __name__ == "__main__":
+    main()
