@@ -19,12 +19,12 @@ echo "scene,steps,cells,binary,threads,policy,busy,rep,loop_s,us_per_cell_step,l
 for rep in $(seq "$REPS"); do
   for sc in $SCENES; do
     f=${sc%%:*}; n=${sc##*:}; name=$(basename "$f" .toml)
-    nx=$(sed -n 's/^nx *= *//p' "$f" | head -1); ny=$(sed -n 's/^ny *= *//p' "$f" | head -1)
+    nx=$(sed -n 's/^nx *= *\([0-9]*\).*/\1/p' "$f" | head -1); ny=$(sed -n 's/^ny *= *\([0-9]*\).*/\1/p' "$f" | head -1)
     for th in 1 2; do
       for bin in "$A" "$B"; do
         rm -rf "$TMP/run"
         if [[ -n "${POLICY:-}" ]]; then export OMP_WAIT_POLICY=$POLICY; else unset OMP_WAIT_POLICY; fi
-        OMP_NUM_THREADS=$th timeout 300 "$bin" run "$f" --out "$TMP/run" --threads "$th" --quiet \
+        OMP_NUM_THREADS=$th timeout 120 "$bin" run "$f" --out "$TMP/run" --threads "$th" --quiet \
           --set time.max_steps="$n" --set output.vtk=false >/dev/null 2>&1 || true
         tot=$(awk -F, '$1=="total"{print $2}' "$TMP/run/timings.csv" 2>/dev/null || echo nan)
         load=$(cut -d' ' -f1 /proc/loadavg)
