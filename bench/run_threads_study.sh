@@ -6,14 +6,14 @@
 # bench/threads_study.py.
 #   bash bench/run_threads_study.sh BIN_A BIN_B [REPS] > runs.csv
 # Knobs: POLICY (OMP_WAIT_POLICY value, empty = unset), BUSY=1 (one competing busy
-# process for the duration), SCENES ("name:steps ..." ; default below).
+# process for the duration, at nice BUSY_NICE, default 19), SCENES ("name:steps ..." ; default below).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 A=$1; B=$2; REPS=${3:-3}
 SCENES=${SCENES:-"bench/scenes/many_discs_64.toml:30 bench/scenes/many_discs_16.toml:30 scenes/two_solids_tgv.toml:300 scenes/couette_elastic.toml:3000"}
 TMP=$(mktemp -d /tmp/solids_par_study.XXXX)
 busy=""
-if [[ "${BUSY:-0}" == 1 ]]; then nice -n 19 sh -c 'while :; do :; done' & busy=$!; fi
+if [[ "${BUSY:-0}" == 1 ]]; then nice -n "${BUSY_NICE:-19}" sh -c 'while :; do :; done' & busy=$!; fi
 trap '[[ -n "$busy" ]] && kill "$busy"; rm -rf "$TMP"' EXIT
 echo "scene,steps,cells,binary,threads,policy,busy,rep,loop_s,us_per_cell_step,load1"
 for rep in $(seq "$REPS"); do

@@ -26,6 +26,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <cstdlib>
+#include <string>
 #include <cstddef>
 #include <exception>
 #include <numeric>
@@ -41,12 +44,33 @@ namespace refmap {
 /// woken, ~10-20 us) only from ~250k. 16384 (128^2) sits between the two kernel kinds and
 /// keeps the former multigrid per-level threshold.
 inline constexpr std::size_t kMinParallelCells = 16384;
+/// The same when waiting threads sleep (OMP_WAIT_POLICY=passive, refmap's default since
+/// solver/main.cpp sets it): every region then wakes its partner (~10-20 us), so small
+/// grids (two_solids_tgv's 128^2) ran slower on 2 threads than on 1 (results/README.md,
+/// "Threads across solids"); 256^2 and larger grids keep their row threading.
+inline constexpr std::size_t kMinParallelCellsPassive = 65536;
+
+/// True when OMP_WAIT_POLICY says passive (read once).
+inline bool passive_wait() {
+  static const bool p = [] {
+    const char* e = std::getenv("OMP_WAIT_POLICY");
+    if (!e) return false;
+    std::string v(e);
+    for (char& c : v) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return v.find("passive") != std::string::npos;
+  }();
+  return p;
+}
+
+/// The work threshold of the wait policy in effect: kMinParallelCells or
+/// kMinParallelCellsPassive.
+inline std::size_t min_parallel_cells() { return passive_wait() ? kMinParallelCellsPassive : kMinParallelCells; }
 
 /// Team size for a loop over `rows` rows holding `cells` cells in all: 1 below
-/// kMinParallelCells or inside a parallel region (no nested teams), never more threads
+/// min_parallel_cells() or inside a parallel region (no nested teams), never more threads
 /// than rows.
 inline int loop_threads(std::size_t cells, int rows) {
-  if (cells < kMinParallelCells || rows < 2 || omp_in_parallel()) return 1;
+  if (cells < min_parallel_cells() || rows < 2 || omp_in_parallel()) return 1;
   return std::max(1, std::min(omp_get_max_threads(), rows));
 }
 
@@ -202,7 +226,7 @@ inline void parallel_items(int n, W&& work, F&& f) {
   std::vector<std::size_t> w(std::size_t(std::max(0, n)));
   std::size_t total = 0;
   for (int k = 0; k < n; ++k) total += (w[std::size_t(k)] = std::size_t(work(k)));
-  if (nt <= 1 || n < 2 || total < kMinParallelCells) {
+  if (nt <= 1 || n < 2 || total < min_parallel_cells()) {
     for (int k = 0; k < n; ++k) f(k);
     return;
   }
@@ -221,7 +245,7 @@ inline void parallel_items(int n, W&& work, F&& f) {
   while (first < n && w[std::size_t(order[std::size_t(first)])] * std::size_t(nt) > total) run(order[std::size_t(first++)]);
   std::size_t rest = 0;
   for (int r = first; r < n; ++r) rest += w[std::size_t(order[std::size_t(r)])];
-  if (n - first < 2 || rest < kMinParallelCells) {
+  if (n - first < 2 || rest < min_parallel_cells()) {
     for (int r = first; r < n; ++r) run(order[std::size_t(r)]);
   } else {
     const int team = std::min(nt, n - first);
