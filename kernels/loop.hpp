@@ -5,7 +5,8 @@
 //
 //  * Row loops: rows of the grid are split statically across OpenMP threads; each kernel
 //    body is a plain inner loop over i that the compiler vectorises.
-//  * Work threshold: a loop over fewer than kMinParallelCells cells runs on the calling
+//  * Work threshold: a loop over fewer than min_parallel_cells() cells (kMinParallelCells;
+//    kMinParallelCellsPassive when waiting threads sleep) runs on the calling
 //    thread as a plain loop, without a parallel region: on small grids (the 8 x 128 elastic
 //    Couette layer, small solid windows, coarse multigrid levels) fork/join and barriers
 //    cost more than the loop. (Not even an `if (false)` region: libgomp still builds a
