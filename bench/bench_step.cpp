@@ -7,6 +7,9 @@
 //   WholeSolidStep/N   one soft disc in a decaying Taylor-Green vortex
 //                      (scenes/disc_tgv.toml: LSQ extrapolation, conservative cell stress,
 //                      multigrid to 1e-9) on N x N cells
+//   ManyDiscsStep/N    the same flow with N soft discs of radius 0.2/sqrt(N) on a lattice
+//                      (bench/scenes/many_discs_<N>.toml) on 512 x 512 cells: the solids'
+//                      phases run one solid per thread (kernels/loop.hpp, parallel_items)
 //
 // The scenes are inline TOML (load_scene_string) so the benchmark does not depend on the
 // working directory. Each Simulation is built once per (scene, N) and kept across the
@@ -21,6 +24,7 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -102,6 +106,25 @@ velocity = "fluid"
 vtk = false
 )";
 
+/// bench/scenes/many_discs_<n>.toml (bench/scenes/make_many_discs.py) as inline TOML: the
+/// disc_tgv flow with n discs of radius 0.2/sqrt(n) centred on a sqrt(n) x sqrt(n) lattice.
+std::string many_discs_toml(int n) {
+  int m = 1;
+  while ((m + 1) * (m + 1) <= n) ++m;
+  std::string t = kDiscTgv;
+  t = t.substr(0, t.find("[[solid]]"));  // the flow without the disc
+  const double r = 0.2 / m;
+  char buf[256];
+  for (int k = 0; k < m * m; ++k) {
+    std::snprintf(buf, sizeof buf,
+                  "[[solid]]\nname = \"disc%d\"\nshape = \"circle\"\ncenter = [%.6f, %.6f]\n"
+                  "radius = %.10g\nmu_s = 0.5\ndensity = 1.0\nvelocity = \"fluid\"\n",
+                  k, (k % m + 0.5) / m, (k / m + 0.5) / m, r);
+    t += buf;
+  }
+  return t + "[output]\nvtk = false\n";
+}
+
 /// The one cached simulation (scene name + N), with its fixed time step.
 struct Cached {
   std::string key;
@@ -143,6 +166,24 @@ void run_steps(benchmark::State& state, const char* toml, const std::string& sce
 
 void BM_WholeFluidStep(benchmark::State& state) { run_steps(state, kCavityRe1000, "cavity"); }
 void BM_WholeSolidStep(benchmark::State& state) { run_steps(state, kDiscTgv, "disc_tgv"); }
+void BM_ManyDiscsStep(benchmark::State& state) {
+  // range(0) is the number of discs; the grid is 512^2 (cells counted as 512^2 per step)
+  const int discs = int(state.range(0));
+  static std::string toml;
+  toml = many_discs_toml(discs);
+  const int n = 512;
+  Cached& c = cached(toml.c_str(), "many_discs_" + std::to_string(discs), n);
+  for (auto _ : state) {
+    c.sim->step(c.dt);
+    benchmark::ClobberMemory();
+  }
+  const double cells = double(n) * n * double(state.iterations());
+  state.counters["cells_per_s"] = benchmark::Counter(cells, benchmark::Counter::kIsRate);
+  state.counters["us_per_cell_step"] = benchmark::Counter(
+      cells * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["solids"] = discs;
+  state.counters["threads"] = omp_get_max_threads();
+}
 
 }  // namespace
 
@@ -156,5 +197,11 @@ BENCHMARK(BM_WholeSolidStep)
     ->Name("WholeSolidStep")
     ->Arg(256)
     ->Arg(1024)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_ManyDiscsStep)
+    ->Name("ManyDiscsStep")
+    ->Arg(16)
+    ->Arg(64)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

@@ -5,7 +5,8 @@
 //
 //  * Row loops: rows of the grid are split statically across OpenMP threads; each kernel
 //    body is a plain inner loop over i that the compiler vectorises.
-//  * Work threshold: a loop over fewer than kMinParallelCells cells runs on the calling
+//  * Work threshold: a loop over fewer than min_parallel_cells() cells (kMinParallelCells;
+//    kMinParallelCellsPassive when waiting threads sleep) runs on the calling
 //    thread as a plain loop, without a parallel region: on small grids (the 8 x 128 elastic
 //    Couette layer, small solid windows, coarse multigrid levels) fork/join and barriers
 //    cost more than the loop. (Not even an `if (false)` region: libgomp still builds a
@@ -17,11 +18,21 @@
 //  * Team regions: one persistent parallel region whose threads own contiguous row chunks
 //    and synchronise with barriers (the multigrid's fused smoothing passes: one fork/join
 //    per pass instead of one per sweep).
+//  * Item loops (parallel_items): independent items of very different sizes (the solids:
+//    each advects, extrapolates and reinitialises its own window) are spread over the
+//    threads one item at a time, largest first, in ONE parallel region; inside it every
+//    row loop, sum, item count and team region of this file runs as a plain serial loop
+//    (omp_in_parallel()), so an item computes the same bits as on one thread.
 #include <omp.h>
 
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <cstdlib>
+#include <string>
 #include <cstddef>
+#include <exception>
+#include <numeric>
 #include <utility>
 #include <vector>
 
@@ -34,18 +45,43 @@ namespace refmap {
 /// woken, ~10-20 us) only from ~250k. 16384 (128^2) sits between the two kernel kinds and
 /// keeps the former multigrid per-level threshold.
 inline constexpr std::size_t kMinParallelCells = 16384;
+/// The same when waiting threads sleep (OMP_WAIT_POLICY=passive, refmap's default since
+/// solver/main.cpp sets it): every region then wakes its partner (~10-20 us), so small
+/// grids (two_solids_tgv's 128^2) ran slower on 2 threads than on 1 (results/README.md,
+/// "Threads across solids"); 256^2 and larger grids keep their row threading.
+inline constexpr std::size_t kMinParallelCellsPassive = 65536;
+
+/// True when OMP_WAIT_POLICY says passive (read once).
+inline bool passive_wait() {
+  static const bool p = [] {
+    const char* e = std::getenv("OMP_WAIT_POLICY");
+    if (!e) return false;
+    std::string v(e);
+    for (char& c : v) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return v.find("passive") != std::string::npos;
+  }();
+  return p;
+}
+
+/// The work threshold of the wait policy in effect: kMinParallelCells or
+/// kMinParallelCellsPassive.
+inline std::size_t min_parallel_cells() { return passive_wait() ? kMinParallelCellsPassive : kMinParallelCells; }
 
 /// Team size for a loop over `rows` rows holding `cells` cells in all: 1 below
-/// kMinParallelCells or inside a parallel region (no nested teams), never more threads
+/// min_parallel_cells() or inside a parallel region (no nested teams), never more threads
 /// than rows.
 inline int loop_threads(std::size_t cells, int rows) {
-  if (cells < kMinParallelCells || rows < 2 || omp_in_parallel()) return 1;
+  if (cells < min_parallel_cells() || rows < 2 || omp_in_parallel()) return 1;
   return std::max(1, std::min(omp_get_max_threads(), rows));
 }
 
 /// Team size for a caller that has already decided to want `want` threads (e.g. a
 /// multigrid level's Stencil::threads): never more threads than rows, at least 1.
 inline int team_size(int want, int rows) { return std::max(1, std::min(want, rows)); }
+
+/// True inside a parallel region with more than one thread (e.g. a parallel_items region):
+/// the loops of this file then run on the calling thread (no nested teams).
+inline bool in_parallel_region() { return omp_in_parallel() != 0; }
 
 /// Per-row partial sums of a reduction (on the stack for up to 2048 values).
 class RowPartials {
@@ -79,7 +115,7 @@ class RowPartials {
 template <class F>
 inline void parallel_rows_on(int nt, int j0, int j1, F&& f) {
   nt = std::min(nt, j1 - j0);
-  if (nt <= 1) {
+  if (nt <= 1 || in_parallel_region()) {
     for (int j = j0; j < j1; ++j) f(j);
     return;
   }
@@ -103,7 +139,7 @@ inline std::array<double, N> parallel_rows_sums_on(int nt, int j0, int j1, F&& f
   std::array<double, N> s{};
   const int n = j1 - j0;
   nt = std::min(nt, n);
-  if (nt <= 1) {  // the same order as the partials below, without storing them
+  if (nt <= 1 || in_parallel_region()) {  // the same order as the partials below, without storing them
     for (int j = j0; j < j1; ++j) {
       const std::array<double, N> a = f(j);
       for (int k = 0; k < N; ++k) s[k] += a[k];
@@ -161,13 +197,64 @@ inline double parallel_rows_max(int j0, int j1, int row_len, F&& f) {
 template <class F>
 inline long parallel_items_count(int nt, long n, F&& f) {
   long s = 0;
-  if (nt <= 1) {
+  if (nt <= 1 || in_parallel_region()) {
     for (long c = 0; c < n; ++c) s += f(c);
     return s;
   }
 #pragma omp parallel for schedule(static) reduction(+ : s) num_threads(nt)
   for (long c = 0; c < n; ++c) s += f(c);
   return s;
+}
+
+// ---- item loops -----------------------------------------------------------------------
+
+/// Calls f(k) for every item k in [0, n), each item on one thread; work(k) estimates item
+/// k's cost in cells of a simple row loop (the unit of kMinParallelCells; e.g. a solid's
+/// window cells times the relative cost of one of them):
+///  * serially in index order (each item's own row loops may then use the team) when
+///    there is one thread, fewer than 2 items, less than kMinParallelCells of work in
+///    all, or when already inside a parallel region;
+///  * otherwise an item holding more than an even share of the work (one large solid
+///    among small ones) runs first on the calling thread with its row loops threaded, and
+///    the others run in one parallel region, dynamic schedule, largest first (so a
+///    large item does not start last and leave the other threads idle).
+/// The items must be independent (each writes only its own state). An exception thrown by
+/// an item is rethrown after all items ran; of several, the one of the lowest index (the
+/// one a serial loop would have thrown).
+template <class W, class F>
+inline void parallel_items(int n, W&& work, F&& f) {
+  const int nt = in_parallel_region() ? 1 : omp_get_max_threads();
+  std::vector<std::size_t> w(std::size_t(std::max(0, n)));
+  std::size_t total = 0;
+  for (int k = 0; k < n; ++k) total += (w[std::size_t(k)] = std::size_t(work(k)));
+  if (nt <= 1 || n < 2 || total < min_parallel_cells()) {
+    for (int k = 0; k < n; ++k) f(k);
+    return;
+  }
+  std::vector<int> order(static_cast<std::size_t>(n));
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return w[std::size_t(a)] > w[std::size_t(b)]; });
+  std::vector<std::exception_ptr> err(static_cast<std::size_t>(n));
+  auto run = [&](int k) {
+    try {
+      f(k);
+    } catch (...) {
+      err[std::size_t(k)] = std::current_exception();
+    }
+  };
+  int first = 0;  // dominant items: row-threaded, one after another
+  while (first < n && w[std::size_t(order[std::size_t(first)])] * std::size_t(nt) > total) run(order[std::size_t(first++)]);
+  std::size_t rest = 0;
+  for (int r = first; r < n; ++r) rest += w[std::size_t(order[std::size_t(r)])];
+  if (n - first < 2 || rest < min_parallel_cells()) {
+    for (int r = first; r < n; ++r) run(order[std::size_t(r)]);
+  } else {
+    const int team = std::min(nt, n - first);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
+    for (int r = first; r < n; ++r) run(order[std::size_t(r)]);
+  }
+  for (const std::exception_ptr& e : err)
+    if (e) std::rethrow_exception(e);
 }
 
 // ---- team regions ----------------------------------------------------------------------
@@ -205,7 +292,7 @@ struct Team {
 /// fused passes that synchronise internally: one fork/join for the whole pass.
 template <class F>
 inline void team_region(int nt, F&& f) {
-  if (nt <= 1) {
+  if (nt <= 1 || in_parallel_region()) {
     f(Team{});
     return;
   }

@@ -15,6 +15,7 @@
 #include <cctype>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -27,6 +28,7 @@
 
 #ifdef _OPENMP
 #include <omp.h>
+#include <unistd.h>
 #endif
 
 #include "solver/checkpoint_io.hpp"
@@ -294,9 +296,29 @@ int cmd_resume(const std::string& out, int threads, bool threads_given, bool qui
   }
 }
 
+/// OpenMP threads wait passively (sleep) at the end of a parallel region unless the user
+/// chose a wait policy (OMP_WAIT_POLICY, or GOMP_SPINCOUNT for libgomp). The default
+/// policy spins: on a shared machine with another busy process a spinning thread keeps
+/// waiting for its descheduled partner at every barrier, and a 2-thread run took 5-30x
+/// the time of a 1-thread run; passive waiting costs a wake-up per region instead
+/// (measurements: results/README.md, "Threads across solids"; docs/performance.md).
+/// libgomp reads the variable once, when it is loaded, before main: so set it and run the
+/// program again (execv of /proc/self/exe, same arguments); if that fails, go on as is.
+void default_wait_policy(char** argv) {
+#if defined(_OPENMP) && defined(__linux__)
+  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
+  if (setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0) return;
+  execv("/proc/self/exe", argv);
+  unsetenv("OMP_WAIT_POLICY");  // exec failed: libgomp already runs with the default policy
+#else
+  (void)argv;
+#endif
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  default_wait_policy(argv);
   CLI::App app{"refmap " REFMAP_VERSION
                ": incompressible flow with soft solids on one Cartesian grid (reference map technique)",
                "refmap"};

@@ -186,7 +186,7 @@ mg::Stencil MultigridHierarchy::stencil(int l) const {
 void MultigridHierarchy::update_threads() {
   const int mt = std::max(1, std::min(omp_get_max_threads(), scratch_.nthreads));
   for (Level& L : levels_)
-    L.threads = std::size_t(L.nx) * std::size_t(L.ny) >= kMinParallelCells ? mt : 1;
+    L.threads = std::size_t(L.nx) * std::size_t(L.ny) >= min_parallel_cells() ? mt : 1;
 }
 
 void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& opt,

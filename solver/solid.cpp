@@ -241,27 +241,33 @@ void Solid::add_blend(Field& out, double q_s, double q_f) const {
 }
 
 template <class Model>
-double Solid::add_model_stress(const Model& model, Field& sxx, Field& sxy, Field& syy, Field& fx,
-                               Field& fy) {
+void Solid::compute_model_stress(const Model& model) {
   // cell-centred stress (eq. 2.9 with eq. 3.1), one cell beyond the transition zone so the
   // non-conservative cell divergence at its edge sees valid neighbours; blended into the
   // global tensor it is the output field and gives the elastic energy
   cell_stress(model, xi_x_.view(), xi_y_.view(), phi_.view(), ni_, nj_, grid_.dx,
               wt_ + 1.5 * grid_.dx, sxx_.view(), sxy_.view(), syy_.view());
-  const double energy = blend_stress(model, sxx_.view(), sxy_.view(), syy_.view(), phi_.view(),
-                                     ni_, nj_, grid_.dx, wt_, sxx.view(), sxy.view(), syy.view(),
-                                     i0_, j0_);
   // largest tangent shear modulus in the solid, for the time step
   max_wave_modulus_ = max_wave_modulus(model, sxx_.view(), sxy_.view(), syy_.view(), phi_.view(),
                                        ni_, nj_, wt_);
-  if (opt_.stress_form == StressForm::Face) {
-    add_face_stress_force(model, xi_x_.view(), xi_y_.view(), phi_.view(), ni_, nj_, grid_.dx,
-                          wt_, opt_.conservative, fx.view(), fy.view(), i0_, j0_);
-  } else if (!opt_.conservative) {
+  if (opt_.stress_form == StressForm::Cell && !opt_.conservative)
     for (Field* f : {&sxx_, &sxy_, &syy_})  // ghosts are outside the band: zero stress
       for (int j = -Grid::ng; j < nj_ + Grid::ng; ++j)
         for (int i = -Grid::ng; i < ni_ + Grid::ng; ++i)
           if (i < 0 || j < 0 || i >= ni_ || j >= nj_) (*f)(i, j) = 0.0;
+}
+
+template <class Model>
+double Solid::blend_model_stress(const Model& model, Field& sxx, Field& sxy, Field& syy, Field& fx,
+                                 Field& fy) const {
+  // (blend_stress reads the window's interior only: the ghosts zeroed above do not matter)
+  const double energy = blend_stress(model, sxx_.view(), sxy_.view(), syy_.view(), phi_.view(),
+                                     ni_, nj_, grid_.dx, wt_, sxx.view(), sxy.view(), syy.view(),
+                                     i0_, j0_);
+  if (opt_.stress_form == StressForm::Face) {
+    add_face_stress_force(model, xi_x_.view(), xi_y_.view(), phi_.view(), ni_, nj_, grid_.dx,
+                          wt_, opt_.conservative, fx.view(), fy.view(), i0_, j0_);
+  } else if (!opt_.conservative) {
     blend_stress_divergence(sxx_.view(), sxy_.view(), syy_.view(), phi_.view(), ni_, nj_,
                             grid_.dx, wt_, fx.view(), fy.view(), i0_, j0_);
   }
@@ -269,12 +275,22 @@ double Solid::add_model_stress(const Model& model, Field& sxx, Field& sxy, Field
   return energy;
 }
 
-double Solid::add_stress(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& fy) {
-  if (spec_.mu_s <= 0.0) return 0.0;
+void Solid::compute_stress() {
+  if (spec_.mu_s <= 0.0) return;
   // one dispatch on the constitutive law per call: the kernels are templates on the model
+  with_constitutive_model(spec_, [&](const auto& model) { compute_model_stress(model); });
+}
+
+double Solid::blend_stress_into(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& fy) const {
+  if (spec_.mu_s <= 0.0) return 0.0;
   return with_constitutive_model(spec_, [&](const auto& model) {
-    return add_model_stress(model, sxx, sxy, syy, fx, fy);
+    return blend_model_stress(model, sxx, sxy, syy, fx, fy);
   });
+}
+
+double Solid::add_stress(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& fy) {
+  compute_stress();
+  return blend_stress_into(sxx, sxy, syy, fx, fy);
 }
 
 void Solid::impose_initial_velocity(Field& u, Field& v) const {

@@ -68,7 +68,15 @@ class Solid {
   /// Stress of the solid's constitutive model (kernels/constitutive.hpp) on its window;
   /// conservative: adds (1-H) sigma_s to the global tensor (sxx, sxy, syy); non-conservative: adds (1-H) div sigma_s to the
   /// force (fx, fy). Returns the elastic energy.
+  /// compute_stress() then blend_stress_into().
   double add_stress(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& fy);
+  /// The first half of add_stress: the stress on the window and the largest tangent
+  /// modulus (min_dt); writes only this solid's state, so solids may run concurrently.
+  void compute_stress();
+  /// The second half: adds the last computed stress to the global fields (they overlap
+  /// where windows do: call it for the solids one after another, in solid order, for
+  /// sums with the same bits for any number of threads). Returns the elastic energy.
+  double blend_stress_into(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& fy) const;
 
   /// Sets the initial velocity inside the solid (rigid motion) blended with (1 - H).
   void impose_initial_velocity(Field& u, Field& v) const;
@@ -113,10 +121,12 @@ class Solid {
   /// extrapolation.
   void fill_ghosts(Field& f, int component) const;
   void compute_phi_from_xi();
-  /// add_stress for one constitutive model (solver/solid.cpp).
+  /// compute_stress / blend_stress_into for one constitutive model (solver/solid.cpp).
   template <class Model>
-  double add_model_stress(const Model& model, Field& sxx, Field& sxy, Field& syy, Field& fx,
-                          Field& fy);
+  void compute_model_stress(const Model& model);
+  template <class Model>
+  double blend_model_stress(const Model& model, Field& sxx, Field& sxy, Field& syy, Field& fx,
+                            Field& fy) const;
 
   SolidSpec spec_;
   SolidsOptions opt_;

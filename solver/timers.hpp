@@ -19,11 +19,14 @@ class PhaseTimers {
   using clock = std::chrono::steady_clock;
   struct Entry { double seconds = 0.0; long calls = 0; };
 
-  void add(const std::string& phase, double seconds) {
+  /// Books `seconds` and `calls` calls under `phase`. Not thread-safe: a phase run by
+  /// several threads at once (the solids' phases) is timed once around its parallel
+  /// region, and its parts are booked afterwards on one thread.
+  void add(const std::string& phase, double seconds, long calls = 1) {
     auto it = entries_.find(phase);
     if (it == entries_.end()) { order_.push_back(phase); it = entries_.emplace(phase, Entry{}).first; }
     it->second.seconds += seconds;
-    it->second.calls += 1;
+    it->second.calls += calls;
   }
   const std::map<std::string, Entry>& entries() const { return entries_; }
   const std::vector<std::string>& order() const { return order_; }
