@@ -147,9 +147,8 @@ Cached& cached(const char* toml, const std::string& scene, int n) {
   return c;
 }
 
-void run_steps(benchmark::State& state, const char* toml, const std::string& scene) {
-  const int n = int(state.range(0));
-  Cached& c = cached(toml, scene, n);
+/// Times sim.step on the cached simulation of (toml, scene) at n x n cells.
+void time_steps(benchmark::State& state, Cached& c, int n) {
   for (auto _ : state) {
     c.sim->step(c.dt);
     benchmark::ClobberMemory();
@@ -159,9 +158,15 @@ void run_steps(benchmark::State& state, const char* toml, const std::string& sce
   // (cells * 1e-6 / s)^-1 = microseconds per cell-step
   state.counters["us_per_cell_step"] = benchmark::Counter(
       cells * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["threads"] = omp_get_max_threads();
+}
+
+void run_steps(benchmark::State& state, const char* toml, const std::string& scene) {
+  const int n = int(state.range(0));
+  Cached& c = cached(toml, scene, n);
+  time_steps(state, c, n);
   state.counters["poisson_iters"] = c.sim->last_poisson_iterations();
   state.counters["dt"] = c.dt;
-  state.counters["threads"] = omp_get_max_threads();
 }
 
 void BM_WholeFluidStep(benchmark::State& state) { run_steps(state, kCavityRe1000, "cavity"); }
@@ -173,16 +178,8 @@ void BM_ManyDiscsStep(benchmark::State& state) {
   toml = many_discs_toml(discs);
   const int n = 512;
   Cached& c = cached(toml.c_str(), "many_discs_" + std::to_string(discs), n);
-  for (auto _ : state) {
-    c.sim->step(c.dt);
-    benchmark::ClobberMemory();
-  }
-  const double cells = double(n) * n * double(state.iterations());
-  state.counters["cells_per_s"] = benchmark::Counter(cells, benchmark::Counter::kIsRate);
-  state.counters["us_per_cell_step"] = benchmark::Counter(
-      cells * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  time_steps(state, c, n);
   state.counters["solids"] = discs;
-  state.counters["threads"] = omp_get_max_threads();
 }
 
 }  // namespace

@@ -18,39 +18,15 @@
 #include "solver/scene.hpp"
 #include "solver/simulation.hpp"
 #include "tests/test_helpers.hpp"
+#include "tests/fixtures/scene_text.hpp"
 
 using namespace refmap;
 using namespace refmap::testing;
 
 namespace {
 
-const char* kDisc = R"(
-name = "fold"
-[domain]
-lx = 1.0
-[grid]
-nx = 32
-ny = 32
-[fluid]
-density = 1.0
-viscosity = 0.01
-[boundary]
-left = "periodic"
-right = "periodic"
-bottom = "periodic"
-top = "periodic"
-[initial]
-velocity = "zero"
-[time]
-end = 1.0
-[[solid]]
-name = "blob"
-shape = "circle"
-center = [0.5, 0.5]
-radius = 0.15
-mu_s = 1.0
-density = 1.0
-)";
+const std::string kDisc = refmap::testing::box_scene(32, refmap::testing::kPeriodic,
+                                                    refmap::testing::disc_toml("blob", 0.5, 0.5, 0.15));
 
 }  // namespace
 
