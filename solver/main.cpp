@@ -168,7 +168,7 @@ int execute(refmap::Simulation& sim, const fs::path& dir, refmap::RunOptions ro,
             bool quiet) {
   const refmap::Config& cfg = sim.config();
   if (!quiet) {
-    std::printf("memory: about %s for the fields, Poisson levels and solids\n",
+    std::printf("memory: about %s\n",
                 refmap::estimate_memory(cfg).summary().c_str());
     std::fflush(stdout);
   }
