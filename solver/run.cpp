@@ -94,9 +94,16 @@ class RunOutput {
     }
     const auto bytes = std::size_t(r.get_i64("run.csv_bytes"));
     const long rows = long(r.get_i64("run.csv_rows"));
+    if (!r.at_end()) throw CheckpointError("checkpoint " + r.path() + ": records left over at the end");
     if (dir_.empty()) return;
-    fs::create_directories(dir_);
+    // everything is checked before any file is touched: a checkpoint that cannot be
+    // continued changes nothing
     std::error_code ec;
+    const fs::path diag = fs::path(dir_) / "diagnostics.csv";
+    if (bytes > 0 && (fs::file_size(diag, ec) < bytes || ec))
+      throw CheckpointError(diag.string() + " is shorter than when the checkpoint " + r.path() +
+                            " was written: the run cannot be continued");
+    fs::create_directories(dir_);
     for (const auto& e : fs::directory_iterator(dir_, ec)) {
       const std::string f = e.path().filename().string();
       int idx = -1;
@@ -302,7 +309,6 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
     next_frame = r.get_f64("run.next_frame");
     last_dt = r.get_f64("run.last_dt");
     outp = std::make_unique<RunOutput>(sim, opt.out_dir, r);
-    if (!r.at_end()) throw CheckpointError("checkpoint " + r.path() + ": records left over at the end");
   } else {
     outp = std::make_unique<RunOutput>(sim, opt.out_dir);
   }

@@ -205,6 +205,19 @@ TEST_F(Survival, DamagedCheckpointIsRefusedAndNothingChanges) {
     EXPECT_EQ(slurp(out / "diagnostics.csv"), diag);
     EXPECT_EQ(slurp(out / "checkpoint.bin"), damaged);
   }
+  // a sound checkpoint whose diagnostics.csv was cut short: refused before any file is touched
+  std::ofstream(out / "checkpoint.bin", std::ios::binary | std::ios::trunc) << ck;
+  std::ofstream(out / "diagnostics.csv", std::ios::binary | std::ios::trunc) << diag.substr(0, 10);
+  int frames = 0;
+  for (const auto& e : fs::directory_iterator(out)) frames += e.path().extension() == ".vti";
+  const Result cut = run({"resume", out.string(), "--quiet"}, dir_ / "c");
+  EXPECT_EQ(cut.code, 2) << cut.err;
+  EXPECT_NE(cut.err.find("shorter than when the checkpoint"), std::string::npos) << cut.err;
+  int frames_after = 0;
+  for (const auto& e : fs::directory_iterator(out)) frames_after += e.path().extension() == ".vti";
+  EXPECT_EQ(frames_after, frames);
+  EXPECT_EQ(slurp(out / "diagnostics.csv"), diag.substr(0, 10));
+
   const Result none = run({"resume", (dir_ / "no_such_run").string(), "--quiet"}, dir_ / "n");
   EXPECT_EQ(none.code, 2) << none.err;
 }
