@@ -68,6 +68,7 @@ void Simulation::load_state(CheckpointReader& r) {
     throw CheckpointError("checkpoint " + r.path() + ": contact state does not match the scene");
   if (contact_) contact_->load_state(r);
   solid_diag_step_ = -1;
+  ke_step_ = -1;
   // the pressure solver's operator of the restored density (as after the step that wrote it)
   PoissonOperator op;
   op.grid = cfg_.grid;

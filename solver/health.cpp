@@ -1,5 +1,7 @@
 #include "solver/health.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstdio>
 
@@ -51,6 +53,23 @@ std::string check_health(const Simulation& sim, double dt) {
     return buf;
   }
   return {};
+}
+
+std::string EnergyJumpCheck::check(const Simulation& sim) {
+  const double ke = sim.kinetic_energy();
+  std::string bad;
+  if (steps_ >= kGrace && prev_ > 0.0 && ke > kFactor * std::max(prev_, peak_)) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "kinetic energy grew from %.3g to %.3g in one step (step %ld, t = %.6g): the solution is "
+                  "blowing up",
+                  prev_, ke, sim.steps(), sim.time());
+    bad = buf;
+  }
+  ++steps_;
+  peak_ = std::max(peak_, ke);
+  prev_ = ke;
+  return bad;
 }
 
 std::string check_reference_maps(const Simulation& sim) {

@@ -12,6 +12,24 @@ class Simulation;
 /// changes a cell's volume by more than 1% per step (the projection failed).
 std::string check_health(const Simulation& sim, double dt);
 
+/// A kinetic energy that grows by orders of magnitude in one step is a blow-up even while
+/// every field is still finite (an explicit step far past its stability limit can take
+/// the energy from 0.1 to 5e4 in one step). Growth by more than kFactor over the larger of
+/// the previous step's energy and the largest so far stops the run; the first kGrace steps
+/// of a run are exempt (a flow started from rest multiplies its energy by large factors at
+/// first). Call check() once after every step.
+class EnergyJumpCheck {
+ public:
+  static constexpr double kFactor = 1e3;
+  static constexpr long kGrace = 2;
+  /// "" or the message naming the two energies, the step and time.
+  std::string check(const Simulation& sim);
+
+ private:
+  long steps_ = 0;
+  double prev_ = 0.0, peak_ = 0.0;
+};
+
 /// "" unless some solid's reference map is folded: det grad xi <= 0 (central differences,
 /// as the stress kernel takes them, eq. 3.1) in a cell with phi < 0. The deformation
 /// gradient F = (grad xi)^{-1} then has det F <= 0 - the material has passed through

@@ -536,13 +536,18 @@ Field Simulation::named_field(const std::string& name) const {
 }
 
 double Simulation::kinetic_energy() const {
+  // keyed by the step count like solid_diagnostics(): the state changes only in step(),
+  // load_state() and through u_mut()/v_mut(), which all reset the key
+  if (ke_step_ == nstep_) return ke_cache_;
   const Grid& g = cfg_.grid;
-  return g.dx * g.dx * parallel_rows_sum(0, g.ny, g.nx, [&](int j) {
+  ke_cache_ = g.dx * g.dx * parallel_rows_sum(0, g.ny, g.nx, [&](int j) {
     double s = 0.0;
     for (int i = 0; i < g.nx; ++i)
       s += 0.5 * rho_(i, j) * (u_(i, j) * u_(i, j) + v_(i, j) * v_(i, j));
     return s;
   });
+  ke_step_ = nstep_;
+  return ke_cache_;
 }
 
 double Simulation::max_face_divergence() const {

@@ -42,8 +42,8 @@ class Simulation {
   const Field& rho() const { return rho_; }
   const Field& uf() const { return uf_; }  ///< x-face normal velocity, (nx+1) x ny
   const Field& vf() const { return vf_; }  ///< y-face normal velocity, nx x (ny+1)
-  Field& u_mut() { return u_; }
-  Field& v_mut() { return v_; }
+  Field& u_mut() { ke_step_ = -1; return u_; }
+  Field& v_mut() { ke_step_ = -1; return v_; }
 
   /// Cell field by probe/output name: u, v, p, density, speed, vorticity (ghosts filled).
   Field named_field(const std::string& name) const;
@@ -67,7 +67,9 @@ class Simulation {
   std::pair<double, double> momentum() const;
 
   // diagnostics
-  double kinetic_energy() const;       ///< sum 0.5 rho |u|^2 dx^2 over cells
+  /// sum 0.5 rho |u|^2 dx^2 over cells; computed once per step (the blow-up check and the
+  /// diagnostics row both read it)
+  double kinetic_energy() const;
   double max_face_divergence() const;  ///< max over cells of |div u_f| (faces' net flux / dx)
   int last_poisson_iterations() const { return last_stats_.iterations; }
   double last_poisson_residual() const { return last_stats_.rel_residual; }
@@ -138,6 +140,8 @@ class Simulation {
   std::vector<std::unique_ptr<Solid>> solids_;
   mutable std::vector<SolidDiagnostics> solid_diag_;  ///< cache of solid_diagnostics()
   mutable long solid_diag_step_ = -1;                 ///< the step it belongs to (-1: none)
+  mutable double ke_cache_ = 0.0;                     ///< kinetic_energy() of step ke_step_
+  mutable long ke_step_ = -1;                         ///< (-1: none)
   Field sxx_, sxy_, syy_;                  // blended solid stress (global, if any solid is elastic)
   double elastic_energy_ = 0.0;
   bool prescribed_depends_on_time_ = false;  ///< flow = "prescribed" with an expression of t
