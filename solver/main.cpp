@@ -183,6 +183,7 @@ int execute(refmap::Simulation& sim, const fs::path& dir, refmap::RunOptions ro,
     std::fflush(stdout);
     std::cerr << "refmap: error: simulation failed after " << s.steps << " steps at t = " << s.t_end << ": "
               << s.failure << "\n";
+    if (!s.failed_frame.empty()) std::cerr << "refmap: the failing state: " << s.failed_frame << "\n";
     std::cerr << "refmap: partial output in " << dir.string() << std::endl;
     return kExitFailed;
   }

@@ -108,6 +108,7 @@ class RunOutput {
       const std::string f = e.path().filename().string();
       int idx = -1;
       if (std::sscanf(f.c_str(), "frame_%d.vti", &idx) == 1 && idx >= frame_) fs::remove(e.path(), ec);
+      if (f == kFailedFrame) fs::remove(e.path(), ec);
       if (f.ends_with(".vti.tmp")) fs::remove(e.path(), ec);
     }
     const Config& cfg = sim_.config();
@@ -159,10 +160,28 @@ class RunOutput {
   /// A VTK frame of the current state, added to the .pvd series.
   void frame() {
     if (!frames()) return;
-    ScopedPhase ph(sim_.timers(), "output");
-    Field vort = sim_.named_field("vorticity");
     char name[64];
     std::snprintf(name, sizeof name, "frame_%05d.vti", frame_++);
+    write_frame(name);
+    pvd_->add(sim_.time(), name);
+  }
+
+  /// frame_failed.vti: the state a health check refused, so that the failure can be looked
+  /// at (issue 13). Written whenever there is an output directory, also with output.vtk =
+  /// false (one file, at the end); its TIME is the failing step's. Not in the .pvd: the
+  /// series holds only scheduled frames of healthy states, and a reader of the series must
+  /// not take this one for one of them. Returns the path ("" without an output directory).
+  std::string failed_frame() {
+    if (!enabled()) return {};
+    write_frame(kFailedFrame);
+    return (fs::path(dir_) / kFailedFrame).string();
+  }
+  static constexpr const char* kFailedFrame = "frame_failed.vti";
+
+ private:
+  void write_frame(const char* name) {
+    ScopedPhase ph(sim_.timers(), "output");
+    Field vort = sim_.named_field("vorticity");
     std::vector<VtkScalar> scalars{{"p", &sim_.p()}, {"vorticity", &vort}, {"density", &sim_.rho()}};
     std::vector<VtkVector> vectors{{"velocity", &sim_.u(), &sim_.v()}};
     Field phi, xix, xiy, normal;
@@ -178,8 +197,9 @@ class RunOutput {
       }
     }
     write_vti((fs::path(dir_) / name).string(), sim_.grid(), scalars, vectors, sim_.time());
-    pvd_->add(sim_.time(), name);
   }
+
+ public:
 
   /// A diagnostics.csv row of the current state.
   void row(double last_dt, double wall_s) {
@@ -354,6 +374,10 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
       if (!bad.empty()) {
         out.row(last_dt, wall_seconds_since(wall0));
         fail(bad);
+        try {  // a frame that cannot be written must not hide the health check's message
+          sum.failed_frame = out.failed_frame();
+        } catch (const std::runtime_error&) {
+        }
         break;
       }
       if (sim.steps() % diag_every == 0) out.row(last_dt, wall_seconds_since(wall0));

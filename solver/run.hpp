@@ -42,6 +42,7 @@ struct RunSummary {
   bool steady = false;          ///< stopped by steady_tol
   bool failed = false;          ///< stopped because fields went non-finite / divergence exploded
   std::string failure;          ///< the message in that case
+  std::string failed_frame;     ///< frame_failed.vti of the state a health check refused ("" if none)
   int signal = 0;               ///< stopped by this signal (SIGINT, SIGTERM) after a clean checkpoint
   std::string checkpoint;       ///< the last checkpoint written ("" if none)
 };

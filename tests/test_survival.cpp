@@ -6,7 +6,8 @@
 //  - a damaged checkpoint is refused with exit 2 and changes nothing;
 //  - failures during the run (a blow-up, a solid carried into a periodic side) end with
 //    exit 3 and a message naming the step and time; a directory that cannot be made is
-//    exit 2;
+//    exit 2; a health check's stop writes frame_failed.vti of the refused state (not in
+//    the .pvd series);
 //  - a reused output directory holds no frames of the earlier run; no .pvd without frames.
 #include <gtest/gtest.h>
 
@@ -236,6 +237,60 @@ TEST_F(Survival, BlowUpIsExit3NamingStepAndTime) {
   const std::string diag = slurp(out / "diagnostics.csv");
   ASSERT_FALSE(diag.empty());
   EXPECT_EQ(diag.back(), '\n');
+}
+
+namespace {
+/// The FieldData TIME of a .vti frame (solver/vtk.cpp writes it with 17 digits).
+double vti_time(const fs::path& p) {
+  const std::string x = slurp(p);
+  const auto k = x.find("Name=\"TIME\"");
+  if (k == std::string::npos) return -1.0;
+  const auto b = x.find('>', k);
+  return std::stod(x.substr(b + 1));
+}
+}  // namespace
+
+TEST_F(Survival, HealthStopWritesTheFailingStateOutsideTheSeries) {
+  // a disc 1000 times lighter than the fluid (mu_s / rho_s kept at the scene's 0.5) folds
+  // its reference map at 32^2 (bench/stability.py, sweep c): the health check stops the run
+  // and frame_failed.vti holds the state it refused, at that step's time
+  const std::vector<std::string> common{"--threads", "1", "--quiet", "--set", "grid.nx=32", "--set", "grid.ny=32",
+                                        "--set", "time.end=1", "--set", "solid.0.density=0.001", "--set",
+                                        "solid.0.mu_s=0.0005"};
+  auto args = [&](const fs::path& out, bool vtk) {
+    std::vector<std::string> a{"run", kScenes + "disc_tgv.toml", "--out", out.string()};
+    a.insert(a.end(), common.begin(), common.end());
+    a.insert(a.end(), {"--set", std::string("output.vtk=") + (vtk ? "true" : "false")});
+    return a;
+  };
+  const fs::path out = dir_ / "folded";
+  const Result r = run(args(out, true), dir_ / "f");
+  ASSERT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("reference map folded in solid 'disc'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the failing state: " + (out / "frame_failed.vti").string()), std::string::npos) << r.err;
+  ASSERT_TRUE(fs::exists(out / "frame_failed.vti"));
+  // its time is the failing step's: the last row of diagnostics.csv (written for the
+  // failing state) and the "at t = ..." of the message (6 digits)
+  const double t_frame = vti_time(out / "frame_failed.vti");
+  const std::string diag = slurp(out / "diagnostics.csv");
+  const auto last = diag.rfind('\n', diag.size() - 2);
+  const std::string row = diag.substr(last + 1);
+  const double t_row = std::stod(row.substr(row.find(',') + 1));
+  EXPECT_NEAR(t_frame, t_row, 1e-9 * t_row) << row;
+  const auto at = r.err.find(" at t = ");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NEAR(t_frame, std::stod(r.err.substr(at + 8)), 1e-5 * t_frame);
+  // not one of the series: the .pvd lists only the scheduled frames, all earlier
+  const std::string pvd = slurp(out / "disc_tgv.pvd");
+  EXPECT_EQ(pvd.find("frame_failed"), std::string::npos) << pvd;
+  EXPECT_NE(pvd.find("frame_00000.vti"), std::string::npos) << pvd;
+  EXPECT_LT(vti_time(out / "frame_00001.vti"), t_frame);
+  // written also when the scene asks for no frames (then the only frame, and no .pvd)
+  const fs::path quiet = dir_ / "folded_novtk";
+  ASSERT_EQ(run(args(quiet, false), dir_ / "g").code, 3);
+  EXPECT_TRUE(fs::exists(quiet / "frame_failed.vti"));
+  EXPECT_FALSE(fs::exists(quiet / "frame_00000.vti"));
+  EXPECT_FALSE(fs::exists(quiet / "disc_tgv.pvd"));
 }
 
 TEST_F(Survival, SolidCarriedIntoAPeriodicSideIsExit3) {
