@@ -26,14 +26,31 @@ vortex, free-slip box):
      is the largest principal stretch lambda from the largest normal stress
      sigma_max = mu_s (tr b - 2) assuming det b = 1: tr b = lambda^2 + lambda^-2, over the
      rows before the failing state
+  c  density ratio rho_s / rho_f = 1e-3 .. 1e3 at mu_s / rho_s = 0.5 (the shear-wave speed
+     and so the solid time step stay the scene's), 48 x 48, to t = 1, without gravity and
+     with g = 1 downwards (then no energy bound: potential energy is released), for the
+     multigrid and (full study) the plain CG pressure solve; a run whose pressure solve ends
+     above solver.tol in any step is `inaccurate` ("Poisson not converged"); the iterations
+     per step are recorded (poisson_iter_mean / _max)
+  d  contact, scenes/wall_microgravity.toml (a disc launched at the bottom wall, no gravity),
+     48 x 48, to t = 0.5: the impact speed V with the contact strength held at the scene's
+     (velocity_scale 1.5), and the contact stiffness at V = 3; `inaccurate` also when the
+     disc overlaps the wall or another solid (gap_wall / gap_solid < 0 in any row), and the
+     energy bound includes the contact spring's energy
   e  resolution R / dx = 2 .. 16 (grid.nx = ny = 5 R/dx) at A0, to t = 2, for the same
      extrapolations; lost when the area error exceeds 10 % or the level set empties
 
 For each method the limit is the largest swept value still `stable` below the first value
-that is not (sweep e: the smallest R/dx from which every finer grid is stable).
+that is not (sweep e and the contact stiffness: the smallest value from which every larger
+one is stable; sweep c: the range of stable ratios around 1, "lo..hi").
+
+Then (--figure yes|only) stability_failures.png: one run just past each limit found
+(SNAPSHOTS), the state a health check refused (frame_failed.vti) or the frame of the event.
 
 Usage: python3 bench/stability.py [--quick] [--bin build/refmap] [--out results] [--jobs 2]
-Writes <out>/stability.csv, <out>/stability_limits.csv, <out>/stability_<sweep>.png; the raw
+                                  [--sweeps a,b,c,d,e] [--figure yes|no|only]
+Writes <out>/stability.csv, <out>/stability_limits.csv, <out>/stability_<sweep>.png and
+<out>/stability_failures.png; the raw
 runs go to <raw> (default /tmp/refmap_stability, not kept).
 """
 from __future__ import annotations
@@ -52,10 +69,11 @@ import time
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SCENE = os.path.join(ROOT, "scenes", "disc_tgv.toml")
+SCENES = os.path.join(ROOT, "scenes")
 A0 = 0.3141592653589793  # the scene's amplitude, U0 2 pi with U0 = 0.05
 R = 0.2                  # the disc's radius in the scene
 MU_S = 0.5               # the scene's mu_s (rho_s = 1)
+POISSON_TOL = 1e-9       # the scenes' solver.tol (relative residual)
 
 COLS = ["sweep", "scene", "method", "stress_discretisation", "conservative", "xi_advection",
         "extrapolation", "lsq_radius", "param", "value", "param2", "value2", "outcome",
@@ -67,7 +85,8 @@ COLS = ["sweep", "scene", "method", "stress_discretisation", "conservative", "xi
 def run_one(job, binary, raw):
     out = os.path.join(raw, job["tag"])
     shutil.rmtree(out, ignore_errors=True)
-    cmd = [binary, "run", SCENE, "-o", out, "-j", "1", "-q"]
+    scene = os.path.join(SCENES, job.get("scene", "disc_tgv") + ".toml")
+    cmd = [binary, "run", scene, "-o", out, "-j", "1", "-q"]
     for s in job["sets"]:
         cmd += ["--set", s]
     t0 = time.time()
@@ -78,6 +97,7 @@ def run_one(job, binary, raw):
     job["stderr"] = p.stderr.strip()
     job["wall_s"] = time.time() - t0
     job["diag"] = read_diag(os.path.join(out, "diagnostics.csv"))
+    job["failed_frame"] = os.path.exists(os.path.join(out, "frame_failed.vti"))
     return job
 
 
@@ -134,16 +154,31 @@ def classify(job):
                     float(err.max()), "")
         return "stable", float("nan"), 0, "area error", float(err.max()), ""
     drift = np.abs(area - area[0]) / area[0]
-    e = d["total_energy"]
-    rise = e / e[0] - 1.0  # a viscous run may never exceed its initial total energy
-    bad_a = np.argmax(drift > 0.01) if np.any(drift > 0.01) else -1
-    bad_e = np.argmax(rise > 0.01) if np.any(rise > 0.01) else -1
-    if bad_a >= 0 or bad_e >= 0:
-        ka = bad_a if bad_a >= 0 else 10**9
-        ke = bad_e if bad_e >= 0 else 10**9
-        if ke <= ka:
-            return "inaccurate", t[ke], int(step[ke]), "energy rise", float(rise.max()), ""
-        return "inaccurate", t[ka], int(step[ka]), "area drift", float(drift.max()), ""
+    # the first row that breaks each bound: (row, measure, its largest value)
+    bad = []
+    if np.any(drift > 0.01):
+        bad.append((int(np.argmax(drift > 0.01)), "area drift", float(drift.max())))
+    if not job.get("gravity"):  # with gravity potential energy is released: no energy bound
+        # contact stores energy in its spring (contact_energy) and gives it back
+        e = d["total_energy"] + d.get("contact_energy", 0.0)
+        rise = e / e[0] - 1.0  # a viscous run may never exceed its initial total energy
+        if np.any(rise > 0.01):
+            bad.append((int(np.argmax(rise > 0.01)), "energy rise", float(rise.max())))
+    if job["sweep"] == "d":  # the zero level set crossed the wall (or another solid)
+        gap = np.minimum(d["solid0_gap_wall"], d["solid0_gap_solid"]) / job["dx"]
+        if np.any(gap < 0.0):
+            bad.append((int(np.argmax(gap < 0.0)), "overlap (gap/dx < 0)", float(gap.min())))
+    if job["sweep"] == "c":  # the pressure solve must reach its tolerance every step
+        res = d["poisson_residual"][1:]
+        if np.any(res > POISSON_TOL):
+            k = int(np.argmax(res > POISSON_TOL)) + 1
+            bad.append((k, "Poisson not converged", float(res.max())))
+    if bad:
+        k, meas, val = min(bad, key=lambda b: b[0])
+        return "inaccurate", t[k], int(step[k]), meas, val, ""
+    if job["sweep"] == "d":
+        gap = np.minimum(d["solid0_gap_wall"], d["solid0_gap_solid"]) / job["dx"]
+        return "stable", float("nan"), 0, "gap/dx", float(gap.min()), ""
     return "stable", float("nan"), 0, "area drift", float(drift.max()), ""
 
 
@@ -155,7 +190,7 @@ def result_row(job):
     row.update({k: job.get(k, "") for k in ["sweep", "method", "stress_discretisation", "conservative",
                                             "xi_advection", "extrapolation", "lsq_radius", "param",
                                             "value", "param2", "value2"]})
-    row.update(scene="disc_tgv", outcome=outcome, t_event=tev, step_event=sev, measure=meas,
+    row.update(scene=job.get("scene", "disc_tgv"), outcome=outcome, t_event=tev, step_event=sev, measure=meas,
                measure_value=val, cause=cause, wall_s=round(job["wall_s"], 3))
     if d:
         # the largest stretch of the healthy states: a stopped run's last row is the failing state
@@ -168,7 +203,7 @@ def result_row(job):
         nx = job.get("nx", 32)
         # P of the first step (the solid at rest): dt sqrt(2 mu_s / rho_s) / dx; below the
         # swept P where the advective or viscous limit binds instead
-        row["p_effective"] = float(dts[0]) * math.sqrt(2.0 * mu) * nx
+        row["p_effective"] = float(dts[0]) * math.sqrt(2.0 * mu / job.get("rho_s", 1.0)) * nx
         pit = d["poisson_iterations"][1:]
         if len(pit):
             row["poisson_iter_mean"] = float(np.mean(pit))
@@ -245,6 +280,56 @@ def jobs_e(quick):
     return out
 
 
+def jobs_c(quick):
+    """Density ratio rho_s / rho_f (rho_f = 1) at a fixed shear-wave speed (mu_s / rho_s = 0.5,
+    the scene's), so that only the density jump across the interface changes: 48 x 48, to
+    t = 1, without gravity (the energy bound holds) and with g = 1 downwards (the disc sinks
+    or rises; area drift only), for multigrid and CG pressure solves."""
+    ratios = [1e-3, 1e-2, 1e-1, 1, 1e1, 1e2, 1e3] if quick else \
+        [1e-3, 1e-2, 3e-2, 1e-1, 0.3, 1, 3, 1e1, 3e1, 1e2, 1e3]
+    solvers = ["multigrid"] if quick else ["multigrid", "cg"]
+    out = []
+    for solver in solvers:
+        for grav in (False, True):
+            name = f"{solver}{', g = 1' if grav else ''}"
+            for r in ratios:
+                sets = [f'solver.poisson="{solver}"', "grid.nx=48", "grid.ny=48", "time.end=1.0",
+                        "output.vtk=false", f"solid.0.density={r:g}", f"solid.0.mu_s={0.5 * r:g}"]
+                if grav:
+                    sets.append("gravity.g=[0.0, -1.0]")
+                out.append(dict(sweep="c", method=name, stress_discretisation="cell", conservative=True,
+                                xi_advection="vanleer", extrapolation="lsq", lsq_radius=2.83,
+                                param="rho_s/rho_f", value=r, gravity=grav, rho_s=r, mu_s=0.5 * r, nx=48,
+                                tag=f"c/{solver}_g{int(grav)}_r{r:g}", sets=sets))
+    return out
+
+
+def jobs_d(quick):
+    """Contact (scenes/wall_microgravity.toml: a soft disc R = 0.15, rho_s = 2, mu_s = 100,
+    launched at the bottom wall, no gravity), 48 x 48, to t = 0.5: the impact speed V raised
+    with the contact strength held at the scene's (contact.velocity_scale = 1.5, the scene's
+    speed; otherwise the strength scales with V^2), and the contact stiffness raised at
+    V = 3 (at the scene's V = 1.5 the fluid film alone keeps the disc 0.4 dx off the wall
+    down to stiffness 0.003: the contact force is not needed there)."""
+    speeds = [0.75, 1.5, 3, 6, 12] if quick else [0.75, 1.5, 2, 3, 4, 6, 8, 12, 16]
+    stiffs = [1, 20, 80, 2000] if quick else [0.1, 1, 5, 20, 40, 80, 200, 2000]
+    base = ["grid.nx=48", "grid.ny=48", "time.end=0.5", "output.vtk=false"]
+    out = []
+    for v in speeds:
+        out.append(dict(sweep="d", scene="wall_microgravity", method="impact speed (stiffness 20, U = 1.5)",
+                        stress_discretisation="cell", conservative=True, xi_advection="vanleer",
+                        extrapolation="lsq", lsq_radius=2.83, param="impact speed V", value=v, dx=1 / 48,
+                        nx=48, mu_s=100.0, rho_s=2.0, tag=f"d/speed_{v:g}",
+                        sets=base + ["contact.velocity_scale=1.5", f"solid.0.v={-v:g}"]))
+    for k in stiffs:  # at V = 3, where the scene's stiffness 20 (strength for U = 1.5) lets it overlap
+        out.append(dict(sweep="d", scene="wall_microgravity", method="contact stiffness (V = 3, U = 1.5)",
+                        stress_discretisation="cell", conservative=True, xi_advection="vanleer",
+                        extrapolation="lsq", lsq_radius=2.83, param="contact.stiffness", value=k, dx=1 / 48,
+                        nx=48, mu_s=100.0, rho_s=2.0, tag=f"d/stiff_{k:g}",
+                        sets=base + ["contact.velocity_scale=1.5", "solid.0.v=-3", f"contact.stiffness={k:g}"]))
+    return out
+
+
 # ------------------------------------------------------------------ limits and charts
 def limits(rows):
     """Per sweep x method (x value2): the limit as documented in the module string."""
@@ -253,7 +338,29 @@ def limits(rows):
     for (sw, m, v2) in keys:
         rs = sorted([r for r in rows if r["sweep"] == sw and r["method"] == m and r["value2"] == v2],
                     key=lambda r: float(r["value"]))
-        if sw == "e":  # smallest R/dx from which every finer grid is stable
+        if sw == "c":  # the stable range around rho_s / rho_f = 1: lo..hi
+            k1 = next((k for k, r in enumerate(rs) if float(r["value"]) == 1.0), None)
+            lo = hi = None
+            bad_lo = bad_hi = None
+            if k1 is not None and rs[k1]["outcome"] == "stable":
+                lo = hi = k1
+                while lo > 0 and rs[lo - 1]["outcome"] == "stable":
+                    lo -= 1
+                while hi + 1 < len(rs) and rs[hi + 1]["outcome"] == "stable":
+                    hi += 1
+                bad_lo = rs[lo - 1] if lo > 0 else None
+                bad_hi = rs[hi + 1] if hi + 1 < len(rs) else None
+            lim = f"{rs[lo]['value']:g}..{rs[hi]['value']:g}" if lo is not None else None
+            fails = [b for b in (bad_lo, bad_hi) if b]
+            out.append(dict(sweep=sw, method=m, param=rs[0]["param"], param2=rs[0]["param2"], value2=v2,
+                            limit=lim if lim is not None else "none",
+                            first_failure=" / ".join(f"{b['value']:g}" for b in fails),
+                            failure_outcome=" / ".join(b["outcome"] for b in fails),
+                            failure_measure=" / ".join(b["measure"] for b in fails),
+                            stretch_at_failure=""))
+            continue
+        if sw == "e" or (sw == "d" and rs[0]["param"] == "contact.stiffness"):
+            # smallest value from which every larger one is stable (finer grid, stiffer contact)
             lim = None
             for r in reversed(rs):
                 if r["outcome"] != "stable":
@@ -305,7 +412,8 @@ def chart(rows, lims, sweep, path, title, xlabel, logx=False, by_value2=False):
                                 xytext=(0, 6), textcoords="offset points", ha="center")
             lim = next((l for l in lims if l["sweep"] == sweep and l["method"] == m and l["value2"] == v2), None)
             if lim and lim["limit"] != "none":
-                ax.scatter(float(lim["limit"]), k, marker="s", s=140, facecolors="none", edgecolors="k", zorder=4)
+                for x in str(lim["limit"]).split(".."):
+                    ax.scatter(float(x), k, marker="s", s=140, facecolors="none", edgecolors="k", zorder=4)
         if logx:
             ax.set_xscale("log")
         ax.set_yticks(range(len(methods)))
@@ -324,6 +432,103 @@ def chart(rows, lims, sweep, path, title, xlabel, logx=False, by_value2=False):
     plt.close(fig)
 
 
+# ------------------------------------------------------------------ snapshots of each failure
+# One run just past each limit the study found (the values are from results/stability_limits.csv),
+# with frames: the panel shows frame_failed.vti if a health check stopped the run (the state it
+# refused, solver/run.cpp), else the frame nearest the event (contact: the smallest gap), else the
+# last frame.
+SNAPSHOTS = [
+    ("solid time step: P = 3, mu_s/rho_s = 100,\ncentral xi fluxes (limit P = 1)", "disc_tgv", "a",
+     method_sets("cell", True, "central") + ["grid.nx=32", "grid.ny=32", "time.end=100", "time.max_steps=400",
+                                            "solid.0.mu_s=100", "solids.solid_cfl=3", "output.interval=0.1"]),
+    ("large deformation: 6 A0, lsq r = 2.83\n(limit 1 A0)", "disc_tgv", "b",
+     ["grid.nx=64", "grid.ny=64", "time.end=2.0", f"initial.amplitude={6 * A0!r}", "output.interval=0.05"]),
+    ("non-conservative form: 1 A0\n(no stable amplitude)", "disc_tgv", "b",
+     ["grid.nx=64", "grid.ny=64", "time.end=2.0", "solids.conservative=false", "output.interval=0.05"]),
+    ("light solid: rho_s/rho_f = 1e-3\n(48^2)", "disc_tgv", "c",
+     ["grid.nx=48", "grid.ny=48", "time.end=1.0", "solid.0.density=0.001", "solid.0.mu_s=0.0005",
+      "output.interval=0.05"]),
+    ("heavy solid: rho_s/rho_f = 100\n(48^2)", "disc_tgv", "c",
+     ["grid.nx=48", "grid.ny=48", "time.end=1.0", "solid.0.density=100", "solid.0.mu_s=50", "output.interval=0.05"]),
+    ("contact: V = 3 at the strength for 1.5\n(48^2, smallest gap)", "wall_microgravity", "d",
+     ["grid.nx=48", "grid.ny=48", "time.end=0.3", "contact.velocity_scale=1.5", "solid.0.v=-3",
+      "output.interval=0.005"]),
+    ("resolution: R/dx = 2, PDE extrapolation\n(t = 2)", "disc_tgv", "e",
+     ["grid.nx=10", "grid.ny=10", "time.end=2.0", 'solids.extrapolation="pde"', "output.interval=0.1"]),
+]
+
+
+def det_grad_xi(xi, dx):
+    """det grad xi by central differences (the stress kernel's, eq. 3.1), NaN on the border."""
+    xx, xy = xi[..., 0], xi[..., 1]
+    d = np.full(xx.shape, np.nan)
+    dxx = (xx[1:-1, 2:] - xx[1:-1, :-2]) / (2 * dx)
+    dxy = (xx[2:, 1:-1] - xx[:-2, 1:-1]) / (2 * dx)
+    dyx = (xy[1:-1, 2:] - xy[1:-1, :-2]) / (2 * dx)
+    dyy = (xy[2:, 1:-1] - xy[:-2, 1:-1]) / (2 * dx)
+    d[1:-1, 1:-1] = dxx * dyy - dxy * dyx
+    return d
+
+
+def failure_figure(binary, raw, out_png, jobs):
+    sys.path.insert(0, os.path.join(ROOT, "scenes"))
+    from plot_run import Frame  # the project's .vti reader
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    runs = [dict(sweep=sw, tag=f"snap/{k}", scene=sc, sets=sets, title=title)
+            for k, (title, sc, sw, sets) in enumerate(SNAPSHOTS)]
+    with cf.ThreadPoolExecutor(max_workers=jobs) as ex:
+        done = list(ex.map(lambda j: run_one(j, binary, raw), runs))
+    ncol = 4
+    nrow = (len(done) + ncol - 1) // ncol
+    fig, axes = plt.subplots(nrow, ncol, figsize=(3.0 * ncol + 1.2, 3.4 * nrow), squeeze=False)
+    for ax in axes.flat:
+        ax.set_visible(False)
+    im = None
+    for ax, job in zip(axes.flat, done):
+        ax.set_visible(True)
+        out = os.path.join(raw, job["tag"])
+        failed = os.path.join(out, "frame_failed.vti")
+        if os.path.exists(failed):
+            path, what = failed, "frame_failed.vti"
+        else:
+            frames = sorted(f for f in os.listdir(out) if re.match(r"frame_\d+\.vti$", f))
+            d = job["diag"]
+            path = os.path.join(out, frames[-1])
+            what = "last frame"
+            if job["scene"] == "wall_microgravity" and d:
+                t_min = d["time"][int(np.argmin(d["solid0_gap_wall"]))]
+                times = [Frame(os.path.join(out, f)).time for f in frames]
+                path = os.path.join(out, frames[int(np.argmin([abs(t - t_min) for t in times]))])
+                what = f"smallest gap {np.min(d['solid0_gap_wall']) / Frame(path).dx:.2f} dx"
+        fr = Frame(path)
+        phi = fr.get("phi")
+        det = det_grad_xi(fr.get("xi"), fr.dx)
+        inside = np.ma.masked_where(~(phi < 0) | np.isnan(det), det)
+        speed = np.hypot(fr.get("u"), fr.get("v"))
+        ax.imshow(speed, origin="lower", extent=fr.extent, cmap="Greys", alpha=0.6,
+                  vmax=np.nanpercentile(speed, 98))  # a blow-up's few huge cells would hide the rest
+        im = ax.imshow(inside, origin="lower", extent=fr.extent, cmap="RdBu", vmin=-1, vmax=3)
+        X, Y = fr.cell_centres()
+        ax.contour(X, Y, phi, levels=[0.0], colors="k", linewidths=0.8)
+        fold = (phi < 0) & (det <= 0)
+        if np.any(fold):
+            ax.plot(X[fold], Y[fold], "x", color="magenta", ms=4, mew=1.2)
+        outcome, _, _, measure, _, _ = classify(dict(job, dx=fr.dx)) if job["diag"] else ("crashed", 0, 0, "", 0, "")
+        ax.set_title(job["title"], fontsize=8)
+        ax.set_xlabel(f"{outcome}: {measure}\n{what}, t = {fr.time:.4g}", fontsize=7)
+        ax.set_xticks([])
+        ax.set_yticks([])
+    if im is not None:
+        fig.colorbar(im, ax=axes.ravel().tolist(), shrink=0.6, label="det grad xi inside the solid (x: <= 0, folded)")
+    fig.suptitle("Where methods fail: one run just past each limit (grey: speed; line: phi = 0)", fontsize=10)
+    fig.savefig(out_png, dpi=110)
+    plt.close(fig)
+    for job in done:
+        print(f"  snapshot {job['tag']}: exit {job['rc']} {job['stderr'].splitlines()[0][:120] if job['stderr'] else ''}")
+
+
 # ------------------------------------------------------------------ main
 def main():
     ap = argparse.ArgumentParser()
@@ -332,11 +537,20 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "results"))
     ap.add_argument("--raw", default="/tmp/refmap_stability")
     ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--sweeps", default="a,b,e")
+    ap.add_argument("--sweeps", default="a,b,c,d,e")
+    ap.add_argument("--figure", choices=["yes", "no", "only"], default="yes",
+                    help="results/stability_failures.png (one run past each limit): with the sweeps, not, or alone")
     args = ap.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    if args.figure != "no":
+        t0 = time.time()
+        failure_figure(args.bin, args.raw, os.path.join(args.out, "stability_failures.png"), args.jobs)
+        print(f"stability_failures.png: {len(SNAPSHOTS)} runs in {time.time() - t0:.0f} s")
+        if args.figure == "only":
+            return
     sweeps = args.sweeps.split(",")
     jobs = []
-    for sw, fn in [("a", jobs_a), ("b", jobs_b), ("e", jobs_e)]:
+    for sw, fn in [("a", jobs_a), ("b", jobs_b), ("c", jobs_c), ("d", jobs_d), ("e", jobs_e)]:
         if sw in sweeps:
             jobs += fn(args.quick)
     t0 = time.time()
@@ -375,6 +589,12 @@ def main():
     chart(rows, lims, "b", os.path.join(args.out, "stability_deformation.png"),
           "large deformation: disc_tgv 64^2 to t = 2, flow amplitude raised (labels: largest stretch before failure)",
           "amplitude / A0 (A0 = 0.1 pi)", logx=True)
+    chart(rows, lims, "c", os.path.join(args.out, "stability_density.png"),
+          "density ratio: disc_tgv 48^2 to t = 1, mu_s/rho_s = 0.5 fixed (stable range boxed at its ends)",
+          "rho_s / rho_f", logx=True)
+    chart(rows, lims, "d", os.path.join(args.out, "stability_contact.png"),
+          "contact: wall_microgravity 48^2 to t = 0.5 (impact speed: largest stable; stiffness: smallest from which all are)",
+          "impact speed V  /  contact.stiffness", logx=True)
     chart(rows, lims, "e", os.path.join(args.out, "stability_resolution.png"),
           "resolution: disc_tgv to t = 2, cells across the disc's radius", "R / dx", logx=True)
     counts = {o: sum(r["outcome"] == o for r in rows) for o in COLOURS}

@@ -4,7 +4,9 @@
 //    one cell of a disc's xi is folded by hand (det grad xi < 0 by the central differences
 //    the stress kernel uses) and the message must name the solid and that global cell;
 //    an unfolded disc passes.
-//  - StabilityLimits: runs each side of the limits the study measured (below).
+//  - StabilityLimits: runs each side of the limits the study measured (below), for the
+//    sweeps a (solid time step), b (deformation), c (density ratio), d (contact) and e
+//    (resolution).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -76,15 +78,17 @@ struct Outcome {
   std::string failure;
   double area_drift = 0.0;   ///< max |A - A0| / A0 over the rows of diagnostics.csv
   double area_error = 0.0;   ///< max |A - pi R^2| / (pi R^2)
-  double energy_rise = 0.0;  ///< max E / E0 - 1
+  double energy_rise = 0.0;  ///< max E / E0 - 1, E = kinetic + elastic + contact energy
+  double min_gap = 1e30;     ///< min over rows of the gap to a wall or solid, in cells
+  double poisson_residual = 0.0;  ///< max over the steps of the pressure solve's residual
 };
 
-Outcome run_disc_tgv(const std::string& tag, std::vector<std::string> sets) {
+Outcome run_disc_tgv(const std::string& tag, std::vector<std::string> sets, const char* scene = "disc_tgv.toml") {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("refmap_test_stability_" + tag);
   fs::remove_all(dir);
   sets.push_back("output.vtk=false");
-  Config cfg = load_scene(scene_path("disc_tgv.toml"), sets);
+  Config cfg = load_scene(scene_path(scene), sets);
   Simulation sim(cfg);
   RunOptions ro;
   ro.out_dir = dir.string();
@@ -95,15 +99,20 @@ Outcome run_disc_tgv(const std::string& tag, std::vector<std::string> sets) {
   o.failed = sum.failed;
   o.failure = sum.failure;
   const Csv d = read_csv((dir / "diagnostics.csv").string());
-  const auto area = d.column("solid0_area"), e = d.column("total_energy");
-  const double exact = M_PI * 0.2 * 0.2;
+  const auto area = d.column("solid0_area"), e = d.column("total_energy"), ec = d.column("contact_energy");
+  const auto gw = d.column("solid0_gap_wall"), gs = d.column("solid0_gap_solid");
+  const auto res = d.column("poisson_residual");
+  const double exact = M_PI * 0.2 * 0.2, dx = sim.grid().dx;
   for (size_t k = 0; k < area.size(); ++k) {
     o.area_drift = std::max(o.area_drift, std::abs(area[k] - area[0]) / area[0]);
     o.area_error = std::max(o.area_error, std::abs(area[k] - exact) / exact);
-    o.energy_rise = std::max(o.energy_rise, e[k] / e[0] - 1.0);
+    o.energy_rise = std::max(o.energy_rise, (e[k] + ec[k]) / (e[0] + ec[0]) - 1.0);
+    o.min_gap = std::min({o.min_gap, gw[k] / dx, gs[k] / dx});
+    if (k > 0) o.poisson_residual = std::max(o.poisson_residual, res[k]);
   }
-  std::printf("[stability] %s: %s, area drift %.3g, area error %.3g, energy rise %.3g %s\n", tag.c_str(),
-              o.failed ? "stopped" : "completed", o.area_drift, o.area_error, o.energy_rise, o.failure.c_str());
+  std::printf("[stability] %s: %s, area drift %.3g, area error %.3g, energy rise %.3g, min gap %.3g dx, "
+              "Poisson residual %.3g %s\n", tag.c_str(), o.failed ? "stopped" : "completed", o.area_drift,
+              o.area_error, o.energy_rise, o.min_gap, o.poisson_residual, o.failure.c_str());
   fs::remove_all(dir);
   return o;
 }
@@ -173,4 +182,70 @@ TEST(StabilityLimits, ResolutionAtLimitIsAccurate) {
 TEST(StabilityLimits, ResolutionFarBelowLimitIsInaccurate) {
   const Outcome o = run_disc_tgv("res_4", {"grid.nx=20", "grid.ny=20", "time.end=2.0"});
   EXPECT_TRUE(o.failed || o.area_error > 0.01) << o.area_error;
+}
+
+// sweep c: the density ratio rho_s / rho_f at mu_s / rho_s = 0.5 (48^2, to t = 1, multigrid,
+// no gravity): stable and accurate from 1 to 3; 10 gains 5 % energy, 100 blows up, 0.3 and
+// below drift in area (0.01: 3 %), 1e-3 folds
+namespace {
+std::vector<std::string> density_case(double ratio) {
+  return {"grid.nx=48", "grid.ny=48", "time.end=1.0", "solid.0.density=" + std::to_string(ratio),
+          "solid.0.mu_s=" + std::to_string(0.5 * ratio)};
+}
+}  // namespace
+
+TEST(StabilityLimits, DensityRatioBelowLimitIsStable) {
+  const Outcome o = run_disc_tgv("rho_2.4", density_case(2.4));  // 0.8 of the limit 3
+  EXPECT_FALSE(o.failed) << o.failure;
+  EXPECT_LE(o.area_drift, 0.01);
+  EXPECT_LE(o.energy_rise, 0.01);
+  EXPECT_LE(o.poisson_residual, 1e-9);  // the scene's solver.tol: the multigrid converged every step
+}
+
+TEST(StabilityLimits, DensityRatioFarPastLimitFails) {
+  const Outcome heavy = run_disc_tgv("rho_100", density_case(100.0));
+  ASSERT_TRUE(heavy.failed);
+  EXPECT_TRUE(heavy.failure.find("time step collapsed") != std::string::npos ||
+              heavy.failure.find("kinetic energy grew") != std::string::npos)
+      << heavy.failure;
+  const Outcome light = run_disc_tgv("rho_0.01", density_case(0.01));
+  EXPECT_TRUE(light.failed || light.area_drift > 0.01) << light.area_drift;
+}
+
+// sweep d: contact, scenes/wall_microgravity.toml (48^2, to t = 0.5) with the contact
+// strength held at the scene's (velocity_scale 1.5): the disc stays off the wall (gap > 0)
+// up to the impact speed V = 2 and overlaps it from V = 3 (gap -0.37 dx; V = 4: -1.25 dx)
+namespace {
+std::vector<std::string> impact_case(double v, double stiffness = 20.0) {
+  return {"grid.nx=48", "grid.ny=48", "time.end=0.5", "contact.velocity_scale=1.5",
+          "solid.0.v=" + std::to_string(-v), "contact.stiffness=" + std::to_string(stiffness)};
+}
+}  // namespace
+
+TEST(StabilityLimits, ImpactBelowLimitKeepsAGap) {
+  const Outcome o = run_disc_tgv("impact_1.6", impact_case(1.6), "wall_microgravity.toml");  // 0.8 of V = 2
+  EXPECT_FALSE(o.failed) << o.failure;
+  EXPECT_GT(o.min_gap, 0.0);
+  EXPECT_LE(o.area_drift, 0.01);
+  EXPECT_LE(o.energy_rise, 0.01);
+}
+
+TEST(StabilityLimits, ImpactFarPastLimitOverlaps) {
+  const Outcome o = run_disc_tgv("impact_4", impact_case(4.0), "wall_microgravity.toml");
+  EXPECT_TRUE(o.failed || o.min_gap < 0.0 || o.area_drift > 0.01) << o.min_gap;
+}
+
+// ... and at V = 3 the contact stiffness (the strength still for U = 1.5) keeps a gap from
+// 40 on (gap 0.42 dx; 2000: 1.8 dx, stable too, with 8 times the steps); 20 and below overlap
+TEST(StabilityLimits, ContactStiffnessAboveLimitKeepsAGap) {
+  const Outcome o = run_disc_tgv("stiff_50", impact_case(3.0, 50.0), "wall_microgravity.toml");  // limit / 0.8
+  EXPECT_FALSE(o.failed) << o.failure;
+  EXPECT_GT(o.min_gap, 0.0);
+  EXPECT_LE(o.area_drift, 0.01);
+  EXPECT_LE(o.energy_rise, 0.01);
+}
+
+TEST(StabilityLimits, ContactStiffnessFarBelowLimitOverlaps) {
+  const Outcome o = run_disc_tgv("stiff_1", impact_case(3.0, 1.0), "wall_microgravity.toml");
+  EXPECT_TRUE(o.failed || o.min_gap < 0.0 || o.area_drift > 0.01) << o.min_gap;
 }
