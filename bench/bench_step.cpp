@@ -10,6 +10,10 @@
 //   ManyDiscsStep/N    the same flow with N soft discs of radius 0.2/sqrt(N) on a lattice
 //                      (bench/scenes/many_discs_<N>.toml) on 512 x 512 cells: the solids'
 //                      phases run one solid per thread (kernels/loop.hpp, parallel_items)
+//   IncrmtCircles42/128  the 42 spinning circles of the peer code IncRMT's multi-drop example
+//                      (bench/scenes/incrmt_circles_42.toml, walls, contact) on 128 x 128:
+//                      many small solids on a small grid, where per-solid threading and
+//                      the cost of each parallel region matter most
 //
 // The scenes are inline TOML (load_scene_string) so the benchmark does not depend on the
 // working directory. Each Simulation is built once per (scene, N) and kept across the
@@ -132,14 +136,15 @@ struct Cached {
   double dt = 0.0;
 };
 
-Cached& cached(const char* toml, const std::string& scene, int n) {
+Cached& cached(const char* toml, const std::string& scene, int n, bool from_file = false) {
   static Cached c;
   const std::string key = scene + "/" + std::to_string(n);
   if (c.key != key) {
     c.sim.reset();  // free the previous grid first
     const std::vector<std::string> sets = {"grid.nx=" + std::to_string(n),
                                            "grid.ny=" + std::to_string(n)};
-    c.sim = std::make_unique<Simulation>(load_scene_string(toml, scene + ".toml", sets));
+    c.sim = std::make_unique<Simulation>(from_file ? load_scene(toml, sets)
+                                                   : load_scene_string(toml, scene + ".toml", sets));
     for (int k = 0; k < kWarmupSteps; ++k) c.sim->step();
     c.dt = c.sim->stable_dt();
     c.key = key;
@@ -182,8 +187,16 @@ void BM_ManyDiscsStep(benchmark::State& state) {
   state.counters["solids"] = discs;
 }
 
+void BM_IncrmtCircles42(benchmark::State& state) {
+  const int n = int(state.range(0));
+  Cached& c = cached(REFMAP_SOURCE_DIR "/bench/scenes/incrmt_circles_42.toml", "incrmt_circles_42", n, true);
+  time_steps(state, c, n);
+  state.counters["solids"] = 42;
+}
+
 }  // namespace
 
+BENCHMARK(BM_IncrmtCircles42)->Name("IncrmtCircles42")->Arg(128)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_WholeFluidStep)
     ->Name("WholeFluidStep")
     ->Arg(256)

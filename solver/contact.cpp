@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kernels/loop.hpp"
 #include "solver/boundary.hpp"
 
 namespace refmap {
@@ -19,10 +20,9 @@ void side_geometry(const Grid& g, int side, int i, int j, double& dist, double& 
   }
 }
 
-struct Contribution {
-  int gi, gj;  // the face: left (x) or bottom (y) face of cell (gi, gj)
-  double w, f; // weight (for the momentum correction) and normal face force density
-};
+// Work of a contact task or gap sweep for parallel_items per visited cell, in cells of a
+// simple row loop (kernels/loop.hpp): a few phi lookups, a ramp and sometimes a pressure.
+constexpr long kContactCellCost = 16;
 
 }  // namespace
 
@@ -67,10 +67,11 @@ double Contact::phi_at(const Solid& s, int gi, int gj) const {
   return s.phi_global(gi, gj);
 }
 
-void Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field& fxf, Field& fyf) {
-  pair_totals_.clear();
-  energy_ = 0.0;
-  if (!force_ || P_ <= 0.0) return;
+template <class Dist>
+void Contact::fill_layer(const Solid& a, Dist&& dist, const std::array<int, 4>& box, Layer& out) const {
+  out.x.clear();
+  out.y.clear();
+  out.energy.clear();
   const double P = P_, d = d_, h = h_, inv_dx = 1.0 / g_.dx;
   const int nx = g_.nx, ny = g_.ny;
   auto pressure = [&](double s) { return s < d ? P * std::pow(1.0 - s / d, 3) : 0.0; };
@@ -78,51 +79,181 @@ void Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field
     const double x = std::clamp(-phi / h, 0.0, 1.0);
     return x * x * (3.0 - 2.0 * x);
   };
-  // Face contributions of solid a pushed by the obstacle at distance dist(gi, gj):
-  // F_f = mean of p_c over the two cells of the face * (difference of chi_a across it) / dx
-  // Only the cells of the box [bi0, bi1] x [bj0, bj1] (inclusive) are visited: the caller
-  // passes the part of a's window where the obstacle's pressure can be non-zero (plus the
-  // cells whose left/bottom face touches it), so the work follows the contact zone.
-  auto layer = [&](const Solid& a, auto&& dist, std::vector<Contribution>& xs,
-                   std::vector<Contribution>& ys, int bi0, int bi1, int bj0, int bj1) {
-    xs.clear();
-    ys.clear();
-    const int gj_lo = std::max(a.j0() - 1, bj0), gj_hi = std::min(a.j0() + a.nj(), bj1);
-    const int gi_lo = std::max(a.i0() - 1, bi0), gi_hi = std::min(a.i0() + a.ni(), bi1);
-    for (int gj = gj_lo; gj <= gj_hi; ++gj)
-      for (int gi = gi_lo; gi <= gi_hi; ++gi) {
-        if (gi < 0 || gi >= nx || gj < 0 || gj >= ny) continue;
-        const double c0 = ramp(phi_at(a, gi, gj));
-        const double p0 = pressure(dist(gi, gj));
-        energy_ += c0 * p0 * g_.dx * g_.dx;  // U = sum chi p_c dx^2 (see contact.hpp)
-        // the face on the left (x) and at the bottom (y) of cell (gi, gj)
-        for (int dir = 0; dir < 2; ++dir) {
-          const int ni = dir == 0 ? gi - 1 : gi, nj = dir == 0 ? gj : gj - 1;
-          const bool seam = dir == 0 ? ni < 0 : nj < 0;
-          if (seam) {
-            switch (sides_[dir == 0 ? Left : Bottom]) {
-              case FaceKind::Wall: continue;  // no normal flux through a wall face
-              case FaceKind::Periodic: break;
-            }
-          }
-          const double c1 = ramp(phi_at(a, ni, nj));
-          if (c0 == c1) continue;
-          const double pm = 0.5 * (p0 + pressure(dist(ni, nj)));
-          if (pm <= 0.0) continue;
-          const double f = pm * (c0 - c1) * inv_dx;
-          (dir == 0 ? xs : ys).push_back({gi, gj, std::abs(f), f});
-        }
+  // F_f = mean of p_c over the two cells of the face * (difference of chi_a across it) / dx.
+  // Only the cells of the box are visited: the part of a's window where the obstacle's
+  // pressure can be non-zero (plus the cells whose left/bottom face touches it), so the
+  // work follows the contact zone.
+  const int gj_lo = std::max(a.j0() - 1, box[2]), gj_hi = std::min(a.j0() + a.nj(), box[3]);
+  const int gi_lo = std::max(a.i0() - 1, box[0]), gi_hi = std::min(a.i0() + a.ni(), box[1]);
+  for (int gj = gj_lo; gj <= gj_hi; ++gj)
+    for (int gi = gi_lo; gi <= gi_hi; ++gi) {
+      if (gi < 0 || gi >= nx || gj < 0 || gj >= ny) continue;
+      const double c0 = ramp(phi_at(a, gi, gj));
+      // p_c at this cell, evaluated only where it is used (chi_a > 0 or a face with a
+      // chi_a jump): the same values as evaluating it everywhere
+      double p0 = -1.0;
+      auto p_here = [&]() { return p0 >= 0.0 ? p0 : (p0 = pressure(dist(gi, gj))); };
+      if (c0 > 0.0) {
+        const double e = c0 * p_here() * g_.dx * g_.dx;  // U = sum chi p_c dx^2 (contact.hpp)
+        if (e != 0.0) out.energy.push_back(e);
       }
+      // the face on the left (x) and at the bottom (y) of cell (gi, gj)
+      for (int dir = 0; dir < 2; ++dir) {
+        const int ni = dir == 0 ? gi - 1 : gi, nj = dir == 0 ? gj : gj - 1;
+        const bool seam = dir == 0 ? ni < 0 : nj < 0;
+        if (seam) {
+          switch (sides_[dir == 0 ? Left : Bottom]) {
+            case FaceKind::Wall: continue;  // no normal flux through a wall face
+            case FaceKind::Periodic: break;
+          }
+        }
+        const double c1 = ramp(phi_at(a, ni, nj));
+        if (c0 == c1) continue;
+        const double pm = 0.5 * (p_here() + pressure(dist(ni, nj)));
+        if (pm <= 0.0) continue;
+        const double f = pm * (c0 - c1) * inv_dx;
+        (dir == 0 ? out.x : out.y).push_back({gi, gj, std::abs(f), f});
+      }
+    }
+}
+
+void Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field& fxf, Field& fyf) {
+  pair_totals_.clear();
+  energy_ = 0.0;
+  if (!force_ || P_ <= 0.0) return;
+  const int nx = g_.nx, ny = g_.ny;
+  const int n = int(solids.size());
+  // per solid the boxes of {phi < 0} and {phi < d} (not used across periodic directions,
+  // where windows wrap)
+  boxes_.resize(std::size_t(n));
+  const bool wrap = sides_.periodic_x() || sides_.periodic_y() || !narrow_boxes_;
+  if (!wrap)
+    parallel_items(
+        n, [&](int k) { return long(solids[std::size_t(k)]->ni()) * solids[std::size_t(k)]->nj(); },
+        [&](int k) {
+          const Solid& s = *solids[std::size_t(k)];
+          Boxes& b = boxes_[std::size_t(k)];
+          b = Boxes{{s.i0() + s.ni(), -1, s.j0() + s.nj(), -1}, {s.i0() + s.ni(), -1, s.j0() + s.nj(), -1}};
+          for (int j = 0; j < s.nj(); ++j)
+            for (int i = 0; i < s.ni(); ++i) {
+              const double ph = s.phi()(i, j);
+              if (!(ph < d_)) continue;
+              const int gi = s.i0() + i, gj = s.j0() + j;
+              auto grow = [&](int* box) {
+                box[0] = std::min(box[0], gi); box[1] = std::max(box[1], gi);
+                box[2] = std::min(box[2], gj); box[3] = std::max(box[3], gj);
+              };
+              grow(b.near);
+              if (ph < 0.0) grow(b.in);
+            }
+        });
+  // Cells that can contribute to a's layer against an obstacle whose pressure region is
+  // the box `near`: the cell or its left/bottom neighbour in a's {phi < 0} box and the
+  // cell or that neighbour in `near` (fill_layer adds nothing elsewhere, so narrowing the
+  // box to them changes no bit).
+  auto narrow = [&](std::array<int, 4> box, const int* in, const int* near) {
+    if (wrap) return box;
+    box[0] = std::max({box[0], in[0], near[0]});
+    box[1] = std::min({box[1], in[1] + 1, near[1] + 1});
+    box[2] = std::max({box[2], in[2], near[2]});
+    box[3] = std::min({box[3], in[3] + 1, near[3] + 1});
+    return box;
   };
-  std::vector<Contribution> ax, ay, bx, by;
-  auto apply = [&](const std::vector<Contribution>& xs, const std::vector<Contribution>& ys,
-                   double cx, double cy, double* tot) {
-    for (const auto& c : xs) {
+  auto empty = [](const std::array<int, 4>& b) { return b[0] > b[1] || b[2] > b[3]; };
+  // the tasks, in the order their results are applied (pairs, then solids and walls)
+  tasks_.clear();
+  for (int ia = 0; ia < n; ++ia)
+    for (int ib = ia + 1; ib < n; ++ib) {
+      const Solid& a = *solids[std::size_t(ia)];
+      const Solid& b = *solids[std::size_t(ib)];
+      // Outside the other solid's window its phi is +band > d (range < band), so the
+      // pressure vanishes there: only the overlap of the two windows matters, extended by
+      // one cell up/right for the faces that touch it. Across a periodic direction the
+      // windows may wrap, so there the whole window is visited.
+      std::array<int, 4> box{std::max(a.i0(), b.i0()) - 1, std::min(a.i0() + a.ni(), b.i0() + b.ni()),
+                             std::max(a.j0(), b.j0()) - 1, std::min(a.j0() + a.nj(), b.j0() + b.nj())};
+      if (sides_.periodic_x()) { box[0] = -1; box[1] = nx; }
+      if (sides_.periodic_y()) { box[2] = -1; box[3] = ny; }
+      if (box[0] >= box[1] || box[2] >= box[3]) continue;  // windows apart: no contact possible
+      Task t{ia, ib, -1, {narrow(box, boxes_[std::size_t(ia)].in, boxes_[std::size_t(ib)].near),
+                          narrow(box, boxes_[std::size_t(ib)].in, boxes_[std::size_t(ia)].near)}};
+      if (empty(t.box[0]) && empty(t.box[1])) continue;  // no layer cell within range
+      tasks_.push_back(t);
+    }
+  for (int ia = 0; ia < n; ++ia)
+    for (int side = 0; side < 4; ++side) {
+      if (!wall_[side]) continue;
+      // the pressure needs a cell centre closer than d to the wall; the layer visits the
+      // window plus one cell (and the left/bottom neighbours of those): skip the side
+      // when even the nearest of them is at least d away
+      const Solid& w = *solids[std::size_t(ia)];
+      double nearest = 0.0;
+      switch (side) {
+        case Left: nearest = (w.i0() - 2 + 0.5) * g_.dx; break;
+        case Right: nearest = (nx - (w.i0() + w.ni()) - 0.5) * g_.dx; break;
+        case Bottom: nearest = (w.j0() - 2 + 0.5) * g_.dx; break;
+        default: nearest = (ny - (w.j0() + w.nj()) - 0.5) * g_.dx; break;
+      }
+      if (nearest >= d_) continue;
+      // the wall's pressure region: the cells whose centre is closer than d to it
+      // (k + 0.5) dx < d for k < m; one more cell against rounding of the cell centres
+      const int m = int(std::ceil(d_ / g_.dx - 0.5)) + 1;
+      int near[4] = {0, nx - 1, 0, ny - 1};
+      switch (side) {
+        case Left: near[1] = m - 1; break;
+        case Right: near[0] = nx - m; break;
+        case Bottom: near[3] = m - 1; break;
+        default: near[2] = ny - m; break;
+      }
+      Task t{ia, -1, side, {narrow({-1, nx, -1, ny}, boxes_[std::size_t(ia)].in, near), {}}};
+      if (empty(t.box[0])) continue;
+      tasks_.push_back(t);
+    }
+  if (layers_.size() < tasks_.size()) layers_.resize(tasks_.size());
+
+  // the tasks' contributions, concurrently (each reads the solids and writes its own layers)
+  auto cells = [&](const Solid& s, const std::array<int, 4>& b) {
+    const long wi = std::min(s.i0() + s.ni(), b[1]) - std::max(s.i0() - 1, b[0]) + 1;
+    const long wj = std::min(s.j0() + s.nj(), b[3]) - std::max(s.j0() - 1, b[2]) + 1;
+    return std::max(0L, wi) * std::max(0L, wj);
+  };
+  parallel_items(
+      int(tasks_.size()),
+      [&](int k) {
+        const Task& t = tasks_[std::size_t(k)];
+        const long c = cells(*solids[std::size_t(t.a)], t.box[0]) +
+                       (t.b >= 0 ? cells(*solids[std::size_t(t.b)], t.box[1]) : 0);
+        return c * kContactCellCost;
+      },
+      [&](int k) {
+        const Task& t = tasks_[std::size_t(k)];
+        auto& L = layers_[std::size_t(k)];
+        const Solid& a = *solids[std::size_t(t.a)];
+        if (t.b >= 0) {
+          const Solid& b = *solids[std::size_t(t.b)];
+          fill_layer(a, [&](int gi, int gj) { return phi_at(b, gi, gj); }, t.box[0], L[0]);
+          fill_layer(b, [&](int gi, int gj) { return phi_at(a, gi, gj); }, t.box[1], L[1]);
+        } else {
+          fill_layer(
+              a,
+              [&](int gi, int gj) {
+                double dist, nx_, ny_;
+                side_geometry(g_, t.side, gi, gj, dist, nx_, ny_);
+                return dist;
+              },
+              t.box[0], L[0]);
+        }
+      });
+
+  // applied serially in task order: the face sums and the energy have the bits of a
+  // serial run on any number of threads
+  auto apply = [&](const Layer& l, double cx, double cy, double* tot) {
+    for (const auto& c : l.x) {
       const double f = c.f + cx * c.w;
       fxf(c.gi, c.gj) += f;
       tot[0] += f;
     }
-    for (const auto& c : ys) {
+    for (const auto& c : l.y) {
       const double f = c.f + cy * c.w;
       fyf(c.gi, c.gj) += f;
       tot[1] += f;
@@ -132,62 +263,32 @@ void Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field
     F = W = 0.0;
     for (const auto& c : v) { F += c.f; W += c.w; }
   };
-  const size_t n = solids.size();
-  for (size_t ia = 0; ia < n; ++ia)
-    for (size_t ib = ia + 1; ib < n; ++ib) {
-      const Solid& a = *solids[ia];
-      const Solid& b = *solids[ib];
-      // Outside the other solid's window its phi is +band > d (range < band), so the
-      // pressure vanishes there: only the overlap of the two windows matters, extended by
-      // one cell up/right for the faces that touch it. Across a periodic direction the
-      // windows may wrap, so there the whole window is visited.
-      int bi0 = std::max(a.i0(), b.i0()) - 1, bi1 = std::min(a.i0() + a.ni(), b.i0() + b.ni());
-      int bj0 = std::max(a.j0(), b.j0()) - 1, bj1 = std::min(a.j0() + a.nj(), b.j0() + b.nj());
-      if (sides_.periodic_x()) { bi0 = -1; bi1 = nx; }
-      if (sides_.periodic_y()) { bj0 = -1; bj1 = ny; }
-      if (bi0 >= bi1 || bj0 >= bj1) continue;  // windows apart: no contact possible
-      layer(a, [&](int gi, int gj) { return phi_at(b, gi, gj); }, ax, ay, bi0, bi1, bj0, bj1);
-      layer(b, [&](int gi, int gj) { return phi_at(a, gi, gj); }, bx, by, bi0, bi1, bj0, bj1);
-      if ((ax.empty() && ay.empty()) || (bx.empty() && by.empty())) continue;
-      // equal and opposite: both totals replaced by +-(F_a - F_b)/2, per direction, the
-      // difference spread over the same faces in proportion to their |force|
-      double Fax, Wax, Fay, Way, Fbx, Wbx, Fby, Wby;
-      sums(ax, Fax, Wax); sums(ay, Fay, Way); sums(bx, Fbx, Wbx); sums(by, Fby, Wby);
-      double Fx = 0.5 * (Fax - Fbx), Fy = 0.5 * (Fay - Fby);
-      if (!(Wax > 0.0 && Wbx > 0.0)) Fx = 0.0;  // no x-faces on one side: no x force
-      if (!(Way > 0.0 && Wby > 0.0)) Fy = 0.0;
-      auto corr = [](double target, double F, double W) { return W > 0.0 ? (target - F) / W : 0.0; };
-      double ta[2] = {0, 0}, tb[2] = {0, 0};
-      apply(ax, ay, corr(Fx, Fax, Wax), corr(Fy, Fay, Way), ta);
-      apply(bx, by, corr(-Fx, Fbx, Wbx), corr(-Fy, Fby, Wby), tb);
-      const double a2 = g_.dx * g_.dx;
-      for (double q : {ta[0], ta[1], tb[0], tb[1]}) pair_totals_.push_back(q * a2);
+  for (std::size_t k = 0; k < tasks_.size(); ++k) {
+    const Task& t = tasks_[k];
+    const Layer& A = layers_[k][0];
+    for (double e : A.energy) energy_ += e;
+    if (t.b < 0) {  // a wall: no reaction to balance
+      double tw[2] = {0, 0};
+      apply(A, 0.0, 0.0, tw);
+      continue;
     }
-  for (const auto& sp : solids)
-    for (int side = 0; side < 4; ++side) {
-      if (!wall_[side]) continue;
-      // the pressure needs a cell centre closer than d to the wall; the layer visits the
-      // window plus one cell (and the left/bottom neighbours of those): skip the side
-      // when even the nearest of them is at least d away
-      const Solid& w = *sp;
-      double nearest = 0.0;
-      switch (side) {
-        case Left: nearest = (w.i0() - 2 + 0.5) * g_.dx; break;
-        case Right: nearest = (nx - (w.i0() + w.ni()) - 0.5) * g_.dx; break;
-        case Bottom: nearest = (w.j0() - 2 + 0.5) * g_.dx; break;
-        default: nearest = (ny - (w.j0() + w.nj()) - 0.5) * g_.dx; break;
-      }
-      if (nearest >= d) continue;
-      layer(*sp,
-            [&](int gi, int gj) {
-              double dist, nx_, ny_;
-              side_geometry(g_, side, gi, gj, dist, nx_, ny_);
-              return dist;
-            },
-            ax, ay, -1, nx, -1, ny);
-      double t[2] = {0, 0};
-      apply(ax, ay, 0.0, 0.0, t);
-    }
+    const Layer& B = layers_[k][1];
+    for (double e : B.energy) energy_ += e;
+    if ((A.x.empty() && A.y.empty()) || (B.x.empty() && B.y.empty())) continue;
+    // equal and opposite: both totals replaced by +-(F_a - F_b)/2, per direction, the
+    // difference spread over the same faces in proportion to their |force|
+    double Fax, Wax, Fay, Way, Fbx, Wbx, Fby, Wby;
+    sums(A.x, Fax, Wax); sums(A.y, Fay, Way); sums(B.x, Fbx, Wbx); sums(B.y, Fby, Wby);
+    double Fx = 0.5 * (Fax - Fbx), Fy = 0.5 * (Fay - Fby);
+    if (!(Wax > 0.0 && Wbx > 0.0)) Fx = 0.0;  // no x-faces on one side: no x force
+    if (!(Way > 0.0 && Wby > 0.0)) Fy = 0.0;
+    auto corr = [](double target, double F, double W) { return W > 0.0 ? (target - F) / W : 0.0; };
+    double ta[2] = {0, 0}, tb[2] = {0, 0};
+    apply(A, corr(Fx, Fax, Wax), corr(Fy, Fay, Way), ta);
+    apply(B, corr(-Fx, Fbx, Wbx), corr(-Fy, Fby, Wby), tb);
+    const double a2 = g_.dx * g_.dx;
+    for (double q : {ta[0], ta[1], tb[0], tb[1]}) pair_totals_.push_back(q * a2);
+  }
 }
 
 double Contact::pair_gap(const Solid& a, const Solid& b) const {
@@ -252,9 +353,32 @@ void Contact::observe(double t, const std::vector<std::unique_ptr<Solid>>& solid
     gap_solid_[i] = sentinel_;
     gap_wall_[i] = sentinel_;
   }
+  // the gaps, per solid concurrently (pairs a < b and a's walls; read-only), then the
+  // contact states and events serially in solid order
+  pair_gap_.assign(n * n, sentinel_);
+  side_gap_.assign(n, {sentinel_, sentinel_, sentinel_, sentinel_});
+  auto overlap = [](const Solid& a, const Solid& b) {
+    const long wi = std::min(a.i0() + a.ni(), b.i0() + b.ni()) - std::max(a.i0(), b.i0());
+    const long wj = std::min(a.j0() + a.nj(), b.j0() + b.nj()) - std::max(a.j0(), b.j0());
+    return std::max(0L, wi) * std::max(0L, wj);
+  };
+  parallel_items(
+      int(n),
+      [&](int a) {
+        long c = 0;
+        for (size_t b = size_t(a) + 1; b < n; ++b) c += overlap(*solids[size_t(a)], *solids[b]);
+        for (int side = 0; side < 4; ++side)
+          if (wall_[side]) c += long(solids[size_t(a)]->ni()) * solids[size_t(a)]->nj();
+        return c * kContactCellCost;
+      },
+      [&](int a) {
+        for (size_t b = size_t(a) + 1; b < n; ++b) pair_gap_[size_t(a) * n + b] = pair_gap(*solids[size_t(a)], *solids[b]);
+        for (int side = 0; side < 4; ++side)
+          if (wall_[side]) side_gap_[size_t(a)][size_t(side)] = wall_gap(*solids[size_t(a)], side);
+      });
   for (size_t a = 0; a < n; ++a)
     for (size_t b = a + 1; b < n; ++b) {
-      const double gap = pair_gap(*solids[a], *solids[b]);
+      const double gap = pair_gap_[a * n + b];
       gap_solid_[a] = std::min(gap_solid_[a], gap);
       gap_solid_[b] = std::min(gap_solid_[b], gap);
       PairState& ps = pair_state_[a * n + b];
@@ -274,7 +398,7 @@ void Contact::observe(double t, const std::vector<std::unique_ptr<Solid>>& solid
   for (size_t i = 0; i < n; ++i)
     for (int side = 0; side < 4; ++side) {
       if (!wall_[side]) continue;
-      const double gap = wall_gap(*solids[i], side);
+      const double gap = side_gap_[i][size_t(side)];
       gap_wall_[i] = std::min(gap_wall_[i], gap);
       double dist, nx, ny;
       side_geometry(g_, side, 0, 0, dist, nx, ny);

@@ -56,6 +56,14 @@
 // otherwise), so two such solids are at least 2 (band + 3) > range cells apart across it:
 // contact.range must be < solids.band (checked when the scene is loaded).
 //
+// THREADS. The work is split into tasks -- one per pair of solids whose windows overlap, one
+// per solid and wall side within range -- that only read the solids: their face
+// contributions and energy terms are computed concurrently (kernels/loop.hpp,
+// parallel_items; with many small solids this is a large share of a step), then applied
+// to the face fields and summed serially in the task order of a serial run, so the forces
+// and contact_energy have the same bits on any number of threads. The gaps of observe()
+// likewise: per solid concurrently, the event logic serially.
+//
 // GAPS (diagnostics). Between solids i and j: min over the cells where both phi_i and
 // phi_j are < band of phi_i + phi_j (for exact distance functions phi_i + phi_j >= gap by
 // the triangle inequality, with equality on the segment joining the closest points: the
@@ -64,6 +72,7 @@
 // To a wall: min over the cells with phi_i < band of (distance of the cell centre to the
 // wall + phi_i) (again >= the gap, equal on the wall normal through the closest point);
 // with no wall (all sides periodic) the domain diagonal.
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -126,6 +135,10 @@ class Contact {
   /// a force), for tests.
   const std::vector<double>& last_pair_totals() const { return pair_totals_; }
 
+  /// Visit only the cells that can contribute (default) or every cell of the overlapping
+  /// windows as before the boxes were narrowed: the same bits either way (for tests).
+  void set_narrow_boxes(bool on) { narrow_boxes_ = on; }
+
   /// The gap and event tracker's state for a checkpoint (solver/checkpoint.cpp).
   void save_state(CheckpointWriter& w) const;
   void load_state(CheckpointReader& r);
@@ -137,6 +150,27 @@ class Contact {
     bool started = false;
   };
   struct PairState { bool in_contact = false; };
+  /// One unit of add_force's work (see THREADS): a pair (a, b) or a solid a and a wall side.
+  struct Task {
+    int a = 0, b = -1, side = -1;
+    /// the cell boxes visited for a's and b's layer: i0, i1, j0, j1 (inclusive)
+    std::array<std::array<int, 4>, 2> box{};
+  };
+  /// A face contribution: the left (x) or bottom (y) face of cell (gi, gj), its weight for
+  /// the momentum correction and its normal force density.
+  struct Contribution {
+    int gi, gj;
+    double w, f;
+  };
+  /// The contributions of one solid of a task, and its energy terms in visiting order.
+  struct Layer {
+    std::vector<Contribution> x, y;
+    std::vector<double> energy;
+  };
+  /// Face contributions of solid a pushed by an obstacle at distance dist(gi, gj) (the
+  /// other solid's phi or the distance to a wall), over the cell box `box`. Reads only.
+  template <class Dist>
+  void fill_layer(const Solid& a, Dist&& dist, const std::array<int, 4>& box, Layer& out) const;
   void emit(double t, int solid, const char* what, double value, const std::string& with);
   void close_rebound(double t, int solid, int side, WallState& w, const char* event = "restitution");
 
@@ -153,6 +187,17 @@ class Contact {
   std::vector<ContactEvent> events_;
   std::vector<double> pair_totals_;
   double energy_ = 0.0;
+  // add_force / observe work space, reused from step to step
+  std::vector<Task> tasks_;
+  /// Per solid, the global cell boxes {phi < 0} and {phi < d} (inclusive; empty: lo > hi):
+  /// a face contribution of a pushed by b needs a cell or its left/bottom neighbour in
+  /// the first box of a and one in the second box of b.
+  struct Boxes { int in[4], near[4]; };
+  std::vector<Boxes> boxes_;
+  bool narrow_boxes_ = true;
+  std::vector<std::array<Layer, 2>> layers_;
+  std::vector<double> pair_gap_;                 ///< observe: i < j, index i * n + j
+  std::vector<std::array<double, 4>> side_gap_;  ///< observe: per solid and side
 };
 
 }  // namespace refmap

@@ -206,17 +206,34 @@ int execute(refmap::Simulation& sim, const fs::path& dir, refmap::RunOptions ro,
     if (warmup > 0)
       table << "(phase times of the last " << s.timed_steps << " steps, after " << warmup << " warm-up steps)\n";
     sim.timers().report(table, s.timed_wall_s);
-    for (const auto& solid : sim.solids()) {
-      const refmap::ExtrapolationCounters& c = solid->extrapolation_counters();
-      char line[256];
-      std::snprintf(line, sizeof line,
-                    "solid %-15s %s extrapolation: %ld calls, %ld cells filled, %ld fallbacks%s, "
+    // one line per solid; beyond a handful of solids their sum (a 42-solid scene would
+    // otherwise end with 42 lines nobody reads)
+    auto line = [&](const std::string& who, const refmap::ExtrapolationCounters& c, long moves) {
+      char buf[256];
+      std::snprintf(buf, sizeof buf,
+                    "%-21s %s extrapolation: %ld calls, %ld cells filled, %ld fallbacks%s, "
                     "%ld window moves\n",
-                    solid->spec().name.c_str(), refmap::to_string(cfg.solid_opt.extrapolation), c.calls,
-                    c.cells_filled, c.fallbacks,
-                    c.iterations ? (", " + std::to_string(c.iterations) + " PDE iterations").c_str() : "",
-                    solid->rewindows());
-      table << line;
+                    who.c_str(), refmap::to_string(cfg.solid_opt.extrapolation), c.calls, c.cells_filled,
+                    c.fallbacks, c.iterations ? (", " + std::to_string(c.iterations) + " PDE iterations").c_str() : "",
+                    moves);
+      table << buf;
+    };
+    constexpr std::size_t kSolidLines = 4;
+    if (sim.solids().size() <= kSolidLines) {
+      for (const auto& solid : sim.solids())
+        line("solid " + solid->spec().name, solid->extrapolation_counters(), solid->rewindows());
+    } else {
+      refmap::ExtrapolationCounters all;
+      long moves = 0;
+      for (const auto& solid : sim.solids()) {
+        const refmap::ExtrapolationCounters& c = solid->extrapolation_counters();
+        all.calls += c.calls;
+        all.cells_filled += c.cells_filled;
+        all.fallbacks += c.fallbacks;
+        all.iterations += c.iterations;
+        moves += solid->rewindows();
+      }
+      line("all " + std::to_string(sim.solids().size()) + " solids", all, moves);
     }
     std::fputs(table.str().c_str(), stdout);
   }

@@ -222,12 +222,6 @@ void Solid::fit_window(bool force) {
   ++rewindows_;
 }
 
-double Solid::phi_global(int i, int j) const {
-  const int li = i - i0_, lj = j - j0_;
-  if (li < 0 || li >= ni_ || lj < 0 || lj >= nj_) return band_;
-  return phi_(li, lj);
-}
-
 void Solid::add_blend(Field& out, double q_s, double q_f) const {
   const double dq = q_s - q_f;
   if (dq == 0.0) return;

@@ -98,7 +98,11 @@ class Solid {
   Field& xi_x_mut() { return xi_x_; }
   Field& xi_y_mut() { return xi_y_; }
   /// phi at a global cell: the window's value, +band outside the window.
-  double phi_global(int i, int j) const;
+  double phi_global(int i, int j) const {
+    const int li = i - i0_, lj = j - j0_;
+    if (li < 0 || li >= ni_ || lj < 0 || lj >= nj_) return band_;
+    return phi_(li, lj);
+  }
   const ExtrapolationCounters& extrapolation_counters() const { return counters_; }
   long rewindows() const { return rewindows_; }
   /// Bytes held by the solid's window arrays (every Field and the mask, ghosts and row
