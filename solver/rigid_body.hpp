@@ -7,19 +7,21 @@
 //
 //  * Reference map: set exactly from the pose, xi(x) = c0 + R(-theta)(x - c) on its whole
 //    window (no advection, no extrapolation), and phi = phi0(xi) rebuilt as for any solid.
-//  * Direct forcing (Uhlmann 2005, J. Comput. Phys. 209, in the diffuse form of the
-//    blending): after the momentum advection and the viscous step, with chi = 1 - H(phi)
-//    the body's solid fraction (H the smoothed Heaviside of eq. 3.5),
+//  * Direct forcing (Uhlmann 2005, J. Comput. Phys. 209): after the momentum advection
+//    and the viscous step, with chi = clamp(1/2 - phi/dx, 0, 1) the body's sub-cell area
+//    fraction (not the smoothed Heaviside of eq. 3.5: a forcing repeated every step makes
+//    the whole support of chi move with the body, and that of 1 - H reaches phi = w_T),
 //        u <- chi u_t + (1 - chi) u,   u_t = u_body(x) + dt G_c,
 //    G_c the cell average of the face accelerations (pressure gradient of the previous
 //    step over rho, gravity, contact) that the predictor (eq. 5.3) and step 9 (eq. 5.7)
 //    subtract: so the face velocities predicted inside the body are u_body and, after the
 //    projection, the cell velocity there is u_body + dt (G_c^n - G_c^{n+1}), i.e. u_body
 //    to O(dt |grad dp|), exactly u_body in a steady state.
-//    Divergence: the forced cell field is not divergence-free in the transition band
-//    |phi| < w_T (a blend of two divergence-free fields); the projection removes that, so
-//    the face velocities stay exactly divergence-free and the no-slip surface is smeared
-//    over the band (an effective radius R + O(w_T) error, first order in dx).
+//    Divergence: the forced cell field is not divergence-free in the one-cell band
+//    |phi| < dx/2 (a blend of two divergence-free fields); the projection removes that,
+//    so the face velocities stay exactly divergence-free, and the no-slip surface is
+//    located to O(dx) (first order). The density and viscosity still blend with the
+//    smoothed Heaviside like any solid's.
 //  * Force on the body from the fluid (reported as solidK_fx, solidK_fy, solidK_torque):
 //        F = -(1/dt) sum rho (u_new - u_old) dx^2 + d/dt sum rho chi u_body dx^2,
 //    the momentum the forcing removes per step plus the rate of change of the body

@@ -36,6 +36,24 @@ std::string circle(double cx, double cy, double r) {
   return o.str();
 }
 
+/// A tabulated body whose phi0 = R2 - |x - (0.5, 0.5)| on the unit square: the outside of
+/// a circle (a circular wall); with R3 > 0 the ring R2 < r < R3 only (phi0 = max(R2 - r,
+/// r - R3)). Returns the file's path.
+std::string outer_wall_file(double R2, const std::string& tag, double R3 = 0.0) {
+  const std::string file = "/tmp/bodies_outer_wall_" + tag + ".txt";
+  std::ofstream f(file);
+  const int m = 129;
+  f << m << " " << m << " 0 0 " << 1.0 / (m - 1) << "\n";
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i < m; ++i) {
+      const double r = std::hypot(i / double(m - 1) - 0.5, j / double(m - 1) - 0.5);
+      f << (R3 > 0.0 ? std::max(R2 - r, r - R3) : R2 - r) << " ";
+    }
+    f << "\n";
+  }
+  return file;
+}
+
 }  // namespace
 
 TEST(Bodies, FixedDiscDragIsTheMomentumLost) {
@@ -57,6 +75,7 @@ TEST(Bodies, FixedDiscDragIsTheMomentumLost) {
     max_rel = std::max(max_rel, std::abs((m0.first - m1.first) / dt - L.fx) / std::abs(L.fx));
     drag_last = L.fx;
     const Solid& s = *sim.solids()[0];
+    if (n < 50) continue;
     for (int j = 0; j < s.nj(); ++j)
       for (int i = 0; i < s.ni(); ++i)
         if (s.phi()(i, j) <= -s.transition())  // chi = 1: fully inside
@@ -72,8 +91,8 @@ TEST(Bodies, FixedDiscDragIsTheMomentumLost) {
   EXPECT_EQ(d1.cx, d0.cx);
   EXPECT_EQ(d1.cy, d0.cy);
   // inside: u_body + dt (G^n - G^{n+1}); the free stream is 1, the change of the pressure
-  // gradient per step small once the impulsive start is over (measured ~1e-3)
-  EXPECT_LT(max_inside, 0.02);
+  // gradient per step small once the impulsive start is over (steps 50-60: measured 1.1e-4)
+  EXPECT_LT(max_inside, 1e-3);
 }
 
 TEST(Bodies, RotatingDiscCircularCouette) {
@@ -81,16 +100,7 @@ TEST(Bodies, RotatingDiscCircularCouette) {
   // outside of a circle, tabulated on the grid's nodes)
   const int n = 64;
   const double R1 = 0.15, R2 = 0.4, Om = 1.0, mu = 0.05;
-  const std::string file = "/tmp/bodies_outer_wall.txt";
-  {
-    std::ofstream f(file);
-    const int m = 129;
-    f << m << " " << m << " 0 0 " << 1.0 / (m - 1) << "\n";
-    for (int j = 0; j < m; ++j) {
-      for (int i = 0; i < m; ++i) f << R2 - std::hypot(i / double(m - 1) - 0.5, j / double(m - 1) - 0.5) << " ";
-      f << "\n";
-    }
-  }
+  const std::string file = outer_wall_file(R2, "couette");
   const std::string extra =
       "[contact]\nenabled = false\n[solver]\ntol = 1e-10\n" +
       body_toml("rotor", circle(0.5, 0.5, R1), "motion = \"prescribed\"\nrotation_rate = " + std::to_string(Om) + "\n") +
@@ -113,10 +123,11 @@ TEST(Bodies, RotatingDiscCircularCouette) {
   const double T_exact = -4.0 * M_PI * mu * Om * R1 * R1 * R2 * R2 / (R2 * R2 - R1 * R1);
   std::printf("couette %dx%d: max |u_theta - exact| / max exact %.3g, torque %.5g (exact %.5g)\n", n, n, err / ref, T,
               T_exact);
-  // the diffuse interface moves the effective radii by a fraction of w_T = 3 dx (first
-  // order in dx): with dx = R1 / 9.6 that is a few per cent of the velocity
-  EXPECT_LT(err / ref, 0.08);
-  EXPECT_NEAR(T / T_exact, 1.0, 0.15);
+  // the forced region ends at phi = dx/2 (solver/rigid_body.cpp): the effective radii are
+  // known to O(dx) (first order); with R1 = 9.6 dx, R2 - R1 = 16 dx a shift of dx/4 of
+  // both is ~ 6% of the velocity and the torque (measured 3.1% and 3.3%)
+  EXPECT_LT(err / ref, 0.06);
+  EXPECT_NEAR(T / T_exact, 1.0, 0.06);
 }
 
 TEST(Bodies, PrescribedTranslationCentroidFollowsPath) {
@@ -154,16 +165,47 @@ TEST(Bodies, ClampedBeamBendsRootStays) {
   const Solid& b = *sim.solids()[1];
   const Grid& g = sim.grid();
   // displacement x - xi of the beam's material at its root (in the post) and near its tip
-  double root = 0.0, tip = 0.0;
+  double root = 0.0, tip = 0.0, tip_dy = 0.0;
+  int ntip = 0;
   for (int j = 0; j < b.nj(); ++j)
     for (int i = 0; i < b.ni(); ++i) {
       if (!(b.phi()(i, j) < 0.0)) continue;
       const double x = g.xc(b.i0() + i), y = g.yc(b.j0() + j);
       const double d = std::hypot(x - b.xi_x()(i, j), y - b.xi_y()(i, j));
       if (std::hypot(x - 0.2, y - 0.5) < 0.08) root = std::max(root, d);
-      if (b.xi_x()(i, j) > 0.68) tip = std::max(tip, d);
+      if (b.xi_x()(i, j) > 0.68) {
+        tip = std::max(tip, d);
+        tip_dy += y - b.xi_y()(i, j);
+        ++ntip;
+      }
     }
-  std::printf("clamped beam: max displacement in the post %.3g, near the tip %.3g\n", root, tip);
-  EXPECT_EQ(root, 0.0);        // held exactly at the rigid (here: fixed) map
-  EXPECT_GT(tip, 2.0 * g.dx);  // and it bends
+  tip_dy /= std::max(ntip, 1);
+  std::printf("clamped beam: max displacement in the post %.3g, near the tip %.3g (mean dy %.3g)\n", root, tip,
+              tip_dy);
+  EXPECT_EQ(root, 0.0);  // held exactly at the rigid (here: fixed) map
+  // and the free end sinks (measured ~0.6 dx at t = 0.8 in this viscous fluid; the static
+  // Euler-Bernoulli deflection q L^4 / (8 E I) with E = 6 mu_s is ~3.6 dx, not reached yet)
+  EXPECT_LT(tip_dy, -0.3 * g.dx);
+}
+
+TEST(Bodies, PinnedDiscSpunUpByRotatingWall) {
+  // a free disc pinned at its centre inside a ring (R2 < r < 0.46, inside the box) turned
+  // at Omega: the steady
+  // state is a rigid rotation of everything, so the disc's rate tends to Omega (spin-up
+  // time ~ R2^2 / (3.83^2 nu) = 0.2 without the disc's inertia)
+  const double R1 = 0.15, R2 = 0.4, Om = 1.0;
+  const std::string extra =
+      "[contact]\nenabled = false\n" + body_toml("disc", circle(0.5, 0.5, R1), "motion = \"pinned\"\n") +
+      body_toml("wall", "shape = \"tabulated\"\nfile = \"" + outer_wall_file(R2, "spinup", 0.46) + "\"\n",
+                "motion = \"prescribed\"\nrotation_rate = " + std::to_string(Om) + "\n");
+  Config cfg = load_scene_string(box_scene(32, kWalls, extra, 0.05, 1.5), "spinup.toml");
+  Simulation sim(cfg);
+  while (sim.time() < 1.5) sim.step();
+  const double w = sim.bodies()->pose(0).omega;
+
+  std::printf("pinned disc: rate %.5f (wall %.1f), angle %.4f\n", w, Om, sim.bodies()->pose(0).theta);
+  // measured 0.985 at t = 1.5 and 0.987 at t = 3: a steady deficit of ~1.3% at this coarse
+  // disc (R1 = 4.8 cells), where the collocated operators keep angular momentum only to
+  // O(dx); a pinned body that did not turn with the fluid would stay at 0
+  EXPECT_NEAR(w, Om, 0.03);
 }
