@@ -209,3 +209,25 @@ TEST(Bodies, PinnedDiscSpunUpByRotatingWall) {
   // O(dx); a pinned body that did not turn with the fluid would stay at 0
   EXPECT_NEAR(w, Om, 0.03);
 }
+
+TEST(Bodies, SceneErrors) {
+  auto error = [](const std::string& extra) {
+    try {
+      (void)load_scene_string(box_scene(32, kWalls, extra), "bad.toml");
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("(loaded)");
+  };
+  const std::string post = body_toml("post", circle(0.3, 0.5, 0.1), "motion = \"fixed\"\n");
+  EXPECT_NE(error(body_toml("a", circle(0.5, 0.5, 0.1), "motion = \"fixed\"\nmu_s = 1.0\n")).find("mu_s: not used with motion = \"fixed\""), std::string::npos);
+  EXPECT_NE(error(body_toml("a", circle(0.5, 0.5, 0.1), "motion = \"prescribed\"\npath_x = \"0.4 + t\"\n")).find("must start at the centre"), std::string::npos);
+  EXPECT_NE(error(body_toml("a", circle(0.5, 0.5, 0.1), "motion = \"prescribed\"\nrotation_rate = \"sin(\"\n")).find("invalid expression"), std::string::npos);
+  EXPECT_NE(error(body_toml("a", circle(0.5, 0.5, 0.1), "motion = \"fixed\"\npivot = [0.5, 0.5]\n")).find("only used with motion = \"pinned\""), std::string::npos);
+  EXPECT_NE(error(body_toml("a", circle(0.5, 0.5, 0.1), "motion = \"pinned\"\nu = 1.0\n")).find("not used with motion"), std::string::npos);
+  EXPECT_NE(error(post + disc_toml("flag", 0.45, 0.5, 0.1, 1.0, "clamp = \"nothing\"\n")).find("no solid is named"), std::string::npos);
+  EXPECT_NE(error(disc_toml("soft", 0.2, 0.5, 0.1) + disc_toml("flag", 0.6, 0.5, 0.1, 1.0, "clamp = \"soft\"\n")).find("is not rigid"), std::string::npos);
+  // a clamped pair may overlap; another pair may not
+  EXPECT_EQ(error(post + disc_toml("flag", 0.42, 0.5, 0.1, 1.0, "clamp = \"post\"\n")), "(loaded)");
+  EXPECT_NE(error(post + disc_toml("flag", 0.42, 0.5, 0.1)).find("overlaps"), std::string::npos);
+}
