@@ -47,6 +47,7 @@ void Simulation::save_state(CheckpointWriter& w) const {
   for (std::size_t k = 0; k < solids_.size(); ++k) solids_[k]->save_state(w, "solid" + std::to_string(k));
   w.put_i64("sim.contact", contact_ ? 1 : 0);
   if (contact_) contact_->save_state(w);
+  if (bodies_) bodies_->save_state(w);  // rigid bodies' poses (solver/rigid_body.hpp)
 }
 
 void Simulation::load_state(CheckpointReader& r) {
@@ -67,6 +68,7 @@ void Simulation::load_state(CheckpointReader& r) {
   if (r.get_i64("sim.contact") != (contact_ ? 1 : 0))
     throw CheckpointError("checkpoint " + r.path() + ": contact state does not match the scene");
   if (contact_) contact_->load_state(r);
+  if (bodies_) bodies_->load_state(r);
   solid_diag_step_ = -1;
   ke_step_ = -1;
   // the pressure solver's operator of the restored density (as after the step that wrote it)

@@ -28,6 +28,9 @@ enum class FlowMode { Solve, Prescribed };
 enum class InitialKind { Zero, Uniform, TaylorGreen, Expression };
 /// SolidSpec::velocity: initial velocity inside a solid.
 enum class SolidVelocity { Rigid, Fluid };
+/// SolidSpec::motion: a soft solid moved by the flow (Free), or a rigid body held still,
+/// moved on a prescribed path or pinned at a point (solver/rigid_body.hpp, docs/bodies.md).
+enum class SolidMotion { Free, Fixed, Prescribed, Pinned };
 /// SolidsOptions::extrapolation: Algorithm 2 (least squares) or the PDE baseline.
 enum class ExtrapolationMethod { Lsq, Pde };
 /// SolidsOptions::stress_form: discretisation of the solid stress divergence.
@@ -76,6 +79,18 @@ struct SolidSpec {
   /// Rigid: u = (u, v) + omega x (x - centre); Fluid: keep the fluid's
   SolidVelocity velocity = SolidVelocity::Rigid;
   double u = 0.0, v = 0.0, omega = 0.0;
+  /// Free: a soft solid (the paper's); otherwise a rigid body whose velocity is imposed in
+  /// its region (solver/rigid_body.hpp). A rigid body has no elastic stress (mu_s = 0).
+  SolidMotion motion = SolidMotion::Free;
+  /// Prescribed: the centre's path x(t), y(t) and the rotation rate omega(t) (expressions
+  /// of t; the path starts at the shape's centre).
+  std::string path_x, path_y, rotation_rate;
+  double pivot_x = 0.0, pivot_y = 0.0;  ///< Pinned: the fixed point it rotates about
+  /// A soft solid clamped to a rigid one: its reference map is held at the rigid motion
+  /// where it overlaps that body ("" = not clamped); clamp_index is its index.
+  std::string clamp;
+  int clamp_index = -1;
+  bool rigid() const { return motion != SolidMotion::Free; }
 };
 
 /// Options shared by all solids ([solids] table).

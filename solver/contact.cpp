@@ -54,6 +54,13 @@ Contact::Contact(const Config& cfg, double velocity_scale) : g_(cfg.grid) {
   pair_state_.assign(n * n, {});
 }
 
+namespace {
+/// A soft solid clamped to a rigid body and that body (solver/rigid_body.hpp): no contact.
+bool clamped_pair(const Solid& a, int ia, const Solid& b, int ib) {
+  return a.spec().clamp_index == ib || b.spec().clamp_index == ia;
+}
+}  // namespace
+
 double Contact::min_dt(double rho_min) const {
   if (!force_ || P_ <= 0.0) return 1e300;
   const double omega2 = 2.0 * 3.0 * P_ / (d_ * rho_min * h_);
@@ -166,6 +173,7 @@ void Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field
     for (int ib = ia + 1; ib < n; ++ib) {
       const Solid& a = *solids[std::size_t(ia)];
       const Solid& b = *solids[std::size_t(ib)];
+      if (clamped_pair(a, ia, b, ib)) continue;  // held together on purpose
       // Outside the other solid's window its phi is +band > d (range < band), so the
       // pressure vanishes there: only the overlap of the two windows matters, extended by
       // one cell up/right for the faces that touch it. Across a periodic direction the
@@ -378,6 +386,7 @@ void Contact::observe(double t, const std::vector<std::unique_ptr<Solid>>& solid
       });
   for (size_t a = 0; a < n; ++a)
     for (size_t b = a + 1; b < n; ++b) {
+      if (clamped_pair(*solids[a], int(a), *solids[b], int(b))) continue;  // no gap, no events
       const double gap = pair_gap_[a * n + b];
       gap_solid_[a] = std::min(gap_solid_[a], gap);
       gap_solid_[b] = std::min(gap_solid_[b], gap);

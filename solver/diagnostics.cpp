@@ -52,7 +52,19 @@ const SolidColumn kSolidColumns[] = {
     {"gap_solid", [](const RowState& r, int k) { return r.sim.contact()->gap_solid(k); }},
     {"gap_wall",  [](const RowState& r, int k) { return r.sim.contact()->gap_wall(k); }},
 };
+
+/// Written after those for every rigid solid k (motion != "free"; solver/rigid_body.hpp):
+/// the fluid's force and torque on it (drag and lift for a flow along x) and its rotation.
+const SolidColumn kBodyColumns[] = {
+    {"fx",     [](const RowState& r, int k) { return r.sim.bodies()->load(k).fx; }},
+    {"fy",     [](const RowState& r, int k) { return r.sim.bodies()->load(k).fy; }},
+    {"torque", [](const RowState& r, int k) { return r.sim.bodies()->load(k).torque; }},
+    {"angle",  [](const RowState& r, int k) { return r.sim.bodies()->pose(k).theta; }},
+    {"omega",  [](const RowState& r, int k) { return r.sim.bodies()->pose(k).omega; }},
+};
 // clang-format on
+
+bool is_body(const Simulation& sim, int k) { return sim.bodies() && sim.bodies()->rigid(k); }
 
 }  // namespace
 
@@ -64,6 +76,9 @@ std::vector<std::string> diagnostic_columns(const Simulation& sim) {
   for (int k = 0; k < nsolids; ++k)
     for (const SolidColumn& col : kSolidColumns)
       c.push_back("solid" + std::to_string(k) + "_" + col.name);
+  for (int k = 0; k < nsolids; ++k)
+    if (is_body(sim, k))
+      for (const SolidColumn& col : kBodyColumns) c.push_back("solid" + std::to_string(k) + "_" + col.name);
   return c;
 }
 
@@ -75,6 +90,9 @@ std::vector<double> diagnostic_values(const Simulation& sim, double last_dt, dou
     if (!col.needs_solids || nsolids > 0) v.push_back(col.value(r));
   for (int k = 0; k < nsolids; ++k)
     for (const SolidColumn& col : kSolidColumns) v.push_back(col.value(r, k));
+  for (int k = 0; k < nsolids; ++k)
+    if (is_body(sim, k))
+      for (const SolidColumn& col : kBodyColumns) v.push_back(col.value(r, k));
   return v;
 }
 

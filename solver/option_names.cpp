@@ -42,6 +42,14 @@ std::span<const OptionName<SolidVelocity>> option_names(SolidVelocity) {
   return span_of(n);
 }
 
+std::span<const OptionName<SolidMotion>> option_names(SolidMotion) {
+  static const OptionName<SolidMotion> n[] = {{SolidMotion::Free, "free"},
+                                              {SolidMotion::Fixed, "fixed"},
+                                              {SolidMotion::Prescribed, "prescribed"},
+                                              {SolidMotion::Pinned, "pinned"}};
+  return span_of(n);
+}
+
 std::span<const OptionName<ExtrapolationMethod>> option_names(ExtrapolationMethod) {
   static const OptionName<ExtrapolationMethod> n[] = {{ExtrapolationMethod::Lsq, "lsq"},
                                                       {ExtrapolationMethod::Pde, "pde"}};

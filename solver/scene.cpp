@@ -27,6 +27,7 @@
 #include "solver/expression.hpp"
 #include "solver/memory_estimate.hpp"
 #include "solver/option_names.hpp"
+#include "solver/rigid_body.hpp"
 #include "solver/scene_keys.hpp"
 
 namespace refmap {
@@ -628,6 +629,29 @@ void parse_boundary(const Ctx& ctx, const Table& top, Config& cfg) {
   }
 }
 
+/// The text of an expression key; a plain number is accepted as an expression too
+/// (u_expr = 0). The expression is parsed here so a bad one fails at load time.
+std::string expression_text(const Table& t, const char* key) {
+  const toml::node* n = t.node(key);
+  std::string text;
+  if (n && n->as_integer()) {
+    text = std::to_string(n->as_integer()->get());
+  } else if (n && n->as_floating_point()) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", n->as_floating_point()->get());
+    text = buf;
+  } else {
+    text = t.string(key);
+  }
+  try {
+    Expression e(text);
+    (void)e;
+  } catch (const std::invalid_argument& ex) {
+    t.fail(key, "invalid expression " + dq(text) + ": " + ex.what());
+  }
+  return text;
+}
+
 void parse_initial(const Ctx& ctx, const Table& top, Config& cfg) {
   const toml::table* t = top.table("initial", false);
   if (!t) return;
@@ -905,10 +929,25 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
                  "] x [" + fmt_num(bb.ymin) + ", " + fmt_num(bb.ymax) + "] does not intersect the domain [" +
                  fmt_num(X0) + ", " + fmt_num(X1) + "] x [" + fmt_num(Y0) + ", " + fmt_num(Y1) + "]");
 
+    // ---- motion: a soft solid, or a rigid body (solver/rigid_body.hpp)
+    sp.motion = s.option<SolidMotion>("motion");
+    const std::string motion = to_string(sp.motion);
+    if (const auto k = s.misplaced("motion", motion))
+      s.fail(*k, "only used with motion = \"" + s.entry(*k).only.front() + "\" (motion is \"" + motion + "\")");
+    const bool rigid = sp.rigid();
+    // the point a rigid body's rotation refers to (as for the initial omega)
+    const double ccx = sh.kind == ShapeKind::Tabulated ? 0.5 * (bb.xmin + bb.xmax) : sh.cx;
+    const double ccy = sh.kind == ShapeKind::Tabulated ? 0.5 * (bb.ymin + bb.ymax) : sh.cy;
+
     // ---- material
-    sp.mu_s = s.number("mu_s", /*required=*/need_material);
+    if (rigid && s.has("mu_s"))
+      s.fail("mu_s", "not used with motion = \"" + motion + "\" (a rigid body has no elastic stress)");
+    sp.mu_s = rigid ? 0.0 : s.number("mu_s", /*required=*/need_material);
     sp.density = s.number("density", /*required=*/need_material);
-    sp.viscosity = s.number("viscosity");
+    // a rigid body's region blends to the fluid's viscosity unless told otherwise: its
+    // velocity is imposed there, and a drop of mu across the interface would move the
+    // effective no-slip surface
+    sp.viscosity = rigid && !s.has("viscosity") ? cfg.mu_f : s.number("viscosity");
     sp.model = s.option<ConstitutiveLaw>("model");
     if (const auto k = s.misplaced("model", to_string(sp.model)))
       s.fail(*k, "only used with model = \"strain_stiffening\"");
@@ -926,7 +965,65 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
       sp.v = s.number("v");
       sp.omega = s.number("omega");
     }
+    // a rigid body's initial velocity is its motion's
+    if (rigid)
+      for (const char* k : {"velocity", "u", "v", "omega"}) {
+        if (sp.motion == SolidMotion::Pinned && std::string(k) == "omega") continue;
+        if (s.has(k))
+          s.fail(k, "not used with motion = \"" + motion + "\" (the motion sets the body's velocity" +
+                        (sp.motion == SolidMotion::Pinned ? std::string("; a pinned body takes `omega` only)") : ")"));
+      }
+    if (sp.motion == SolidMotion::Fixed) {
+      sp.velocity = SolidVelocity::Rigid;
+      sp.u = sp.v = sp.omega = 0.0;
+    } else if (sp.motion == SolidMotion::Prescribed) {
+      char buf[2][40];
+      std::snprintf(buf[0], sizeof buf[0], "%.17g", ccx);
+      std::snprintf(buf[1], sizeof buf[1], "%.17g", ccy);
+      sp.path_x = s.has("path_x") ? expression_text(s, "path_x") : std::string(buf[0]);
+      sp.path_y = s.has("path_y") ? expression_text(s, "path_y") : std::string(buf[1]);
+      sp.rotation_rate = s.has("rotation_rate") ? expression_text(s, "rotation_rate") : std::string("0");
+      const RigidPath path(sp.path_x, sp.path_y, sp.rotation_rate);
+      const double t0 = cfg.t_start, tol = 1e-9 * g.dx;
+      const auto c0 = path.centre(t0);
+      for (int d = 0; d < 2; ++d) {
+        const double want = d == 0 ? ccx : ccy, got = c0[std::size_t(d)];
+        if (!std::isfinite(got) || std::abs(got - want) > tol)
+          s.fail(d == 0 ? "path_x" : "path_y",
+                 "must start at the centre: it is " + fmt_num(got) + " at t = " + fmt_num(t0) + ", the centre " +
+                     (d == 0 ? "x" : "y") + " is " + fmt_num(want));
+      }
+      const auto v0 = path.velocity(t0);
+      sp.velocity = SolidVelocity::Rigid;
+      sp.u = v0[0];
+      sp.v = v0[1];
+      sp.omega = path.rate(t0);
+      if (!std::isfinite(sp.u) || !std::isfinite(sp.v) || !std::isfinite(sp.omega))
+        s.fail(s.has("rotation_rate") ? "rotation_rate" : "path_x", "the motion's velocity is not finite at the start");
+    } else if (sp.motion == SolidMotion::Pinned) {
+      const auto p = s.has("pivot") ? s.vec2("pivot") : std::array<double, 2>{ccx, ccy};
+      sp.pivot_x = p[0];
+      sp.pivot_y = p[1];
+      sp.velocity = SolidVelocity::Rigid;
+      sp.omega = s.number("omega");
+      // rotation about the pivot, written as a translation plus the rotation about the centre
+      sp.u = -sp.omega * (ccy - sp.pivot_y);
+      sp.v = sp.omega * (ccx - sp.pivot_x);
+    }
+    if (s.has("clamp")) sp.clamp = s.string("clamp");
     cfg.solids.push_back(std::move(sp));
+  }
+  // clamped soft solids: the body they are clamped to must be a rigid solid of the scene
+  for (std::size_t i = 0; i < cfg.solids.size(); ++i) {
+    SolidSpec& sp = cfg.solids[i];
+    if (sp.clamp.empty()) continue;
+    Table s(ctx, *arr->get(i)->as_table(), "solid[" + std::to_string(i) + "]", "solid");
+    for (std::size_t k = 0; k < cfg.solids.size(); ++k)
+      if (cfg.solids[k].name == sp.clamp) sp.clamp_index = int(k);
+    if (sp.clamp_index < 0) s.fail("clamp", "no solid is named " + dq(sp.clamp));
+    if (!cfg.solids[std::size_t(sp.clamp_index)].rigid())
+      s.fail("clamp", "solid " + dq(sp.clamp) + " is not rigid (a soft solid is clamped to a body with motion = "
+                      "\"fixed\", \"prescribed\" or \"pinned\")");
   }
 }
 
@@ -1012,6 +1109,8 @@ void check_start_state(const Ctx& ctx, const Table& top, const Config& cfg) {
   // 5. no two solids overlap at the start (sampled at the cell centres)
   for (std::size_t a = 0; a < shapes.size(); ++a)
     for (std::size_t b = a + 1; b < shapes.size(); ++b) {
+      // a clamped soft solid overlaps its rigid body on purpose
+      if (cfg.solids[a].clamp_index == int(b) || cfg.solids[b].clamp_index == int(a)) continue;
       const BoundingBox &A = boxes[a], &B = boxes[b];
       const double xa = std::max(A.xmin, B.xmin), xb = std::min(A.xmax, B.xmax);
       const double ya = std::max(A.ymin, B.ymin), yb = std::min(A.ymax, B.ymax);

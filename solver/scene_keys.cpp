@@ -299,6 +299,32 @@ std::vector<KeyDef> build_keys() {
       only(num("solid", "omega", ds.omega, {},
                "initial rotation rate (counter-clockwise) about `center` (the bounding-box centre for `tabulated`)"),
            "velocity", {"rigid"}),
+      choice<SolidMotion>("solid", "motion", ds.motion,
+                          "`\"free\"`: a soft solid moved by the flow; a rigid body (docs/bodies.md) held still "
+                          "(`\"fixed\"`), moved on a path (`\"prescribed\"`) or pinned at a point and free to rotate "
+                          "(`\"pinned\"`); its velocity is imposed in its region and the force on it reported in "
+                          "`diagnostics.csv`. A rigid body takes no `mu_s`; its `viscosity` defaults to the fluid's"),
+      only(shown_default(key("solid", "path_x", KT::Expression, {}, {},
+                             "x of the centre as an expression of t; must equal `center` at the start time"),
+                         "`center` (still)"),
+           "motion", {"prescribed"}),
+      only(shown_default(key("solid", "path_y", KT::Expression, {}, {},
+                             "y of the centre as an expression of t; must equal `center` at the start time"),
+                         "`center` (still)"),
+           "motion", {"prescribed"}),
+      only(shown_default(key("solid", "rotation_rate", KT::Expression, {}, {},
+                             "rotation rate omega(t) about the centre, counter-clockwise, an expression of t"),
+                         "`0`"),
+           "motion", {"prescribed"}),
+      only(shown_default(vec2("solid", "pivot", std::nullopt,
+                              "the fixed point (x, y) a pinned body rotates about; its initial rate is `omega`"),
+                         "`center`"),
+           "motion", {"pinned"}),
+      only(shown_default(str("solid", "clamp", std::nullopt,
+                             "name of a rigid solid this soft solid is clamped to: where it overlaps that body its "
+                             "reference map moves with it, and contact between the two is off"),
+                         "not clamped"),
+           "motion", {"free"}),
 
       boolean("contact", "enabled", dc.enabled, "contact force on (the gaps and events are reported either way)"),
       boolean("contact", "walls", dc.walls,

@@ -40,6 +40,7 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
   }
   if (elastic)
     for (Field* f : {&sxx_, &sxy_, &syy_}) f->resize(nx, ny, ng);
+  if (RigidBodies::needed(cfg_)) bodies_ = std::make_unique<RigidBodies>(cfg_);
   poisson_ = make_poisson_solver(cfg_.poisson);
   initialise();
   if (!solids_.empty()) {
@@ -144,15 +145,19 @@ void Simulation::update_solids(double dt) {
   // per solid: [xi advection without its stage re-extrapolations, extrapolation, level set]
   std::vector<std::array<double, 3>> secs(std::size_t(n), std::array<double, 3>{});
   const auto w0 = clock::now();
+  if (bodies_) bodies_->advance(t_, dt);
   parallel_items(n, [&](int k) { return window_work(*solids_[std::size_t(k)], kStepCellCost); }, [&](int k) {
     Solid& s = *solids_[std::size_t(k)];
     // the RK-4 stages re-extrapolate the band (Solid::advect): that time is booked under
     // "extrapolation", the rest under "xi advection"
     const double ext0 = s.extrapolation_counters().seconds;
     const auto t0 = clock::now();
-    s.advect(uf_, vf_, dt);
+    // a rigid body's reference map is set from its pose, not advected (solver/rigid_body.hpp)
+    const bool rigid = bodies_ && bodies_->rigid(k);
+    if (!rigid) s.advect(uf_, vf_, dt);
     const double t_adv = std::chrono::duration<double>(clock::now() - t0).count();
-    s.extrapolate();
+    if (!rigid) s.extrapolate();
+    if (bodies_) bodies_->place(k, solids_);  // rigid: the whole map; clamped: inside its body
     const double t_ext = s.extrapolation_counters().seconds - ext0;
     const double t_stage_ext = std::min(t_ext, t_adv);
     const auto t1 = clock::now();
@@ -345,6 +350,7 @@ double Simulation::step(double dt) {
   apply_viscous_and_solid_stress(dt);
   if (!solids_.empty()) setup_poisson();
   if (contact_ && contact_->force_enabled()) compute_contact_force();
+  if (bodies_) force_bodies(dt);         // rigid bodies' velocity (solver/rigid_body.hpp)
   predict_face_velocities(dt);           // step 5
   solve_pressure();                      // step 6
   project(dt);                           // steps 7-9
@@ -452,6 +458,19 @@ void Simulation::compute_contact_force() {
   cfx_.fill(0.0);
   cfy_.fill(0.0);
   contact_->add_force(solids_, cfx_, cfy_);
+}
+
+void Simulation::force_bodies(double dt) {
+  // the face accelerations the predictor will subtract (the same computation as in
+  // predict_face_velocities): the forcing aims at u_body + dt G_c so that the predicted
+  // face velocities inside a body are its velocity
+  ScopedPhase ph(timers_, "bodies");
+  const Grid& g = cfg_.grid;
+  fill_scalar_ghosts(p_, cfg_.bc);
+  face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny, g.dx, cfg_.gx,
+             cfg_.gy, cfg_.rho_f, face_boundary(cfg_));
+  add_contact_face_accel();
+  bodies_->force(solids_, u_, v_, rho_, gxf_, gyf_, g, dt);
 }
 
 void Simulation::predict_face_velocities(double dt) {

@@ -11,6 +11,7 @@
 #include "core/field.hpp"
 #include "core/grid.hpp"
 #include "solver/poisson.hpp"
+#include "solver/rigid_body.hpp"
 #include "solver/solid.hpp"
 #include "solver/timers.hpp"
 
@@ -63,6 +64,8 @@ class Simulation {
   /// The contact force density of the last step on x- and y-faces (empty without contact).
   const Field& contact_force_x() const { return cfx_; }
   const Field& contact_force_y() const { return cfy_; }
+  /// Rigid bodies' poses and loads (solver/rigid_body.hpp; null without a rigid body).
+  const RigidBodies* bodies() const { return bodies_.get(); }
   /// Total momentum sum rho u dx^2 (x and y).
   std::pair<double, double> momentum() const;
 
@@ -113,6 +116,8 @@ class Simulation {
   void solve_pressure();
   /// Steps 7-9, eqs. (5.5)-(5.7), "projection": new pressure, face and cell velocities.
   void project(double dt);
+  /// "bodies": the direct forcing of the rigid bodies' velocity (solver/rigid_body.hpp).
+  void force_bodies(double dt);
   /// "contact": the gap and event tracker after the step.
   void observe_contact();
 
@@ -146,6 +151,7 @@ class Simulation {
   double elastic_energy_ = 0.0;
   bool prescribed_depends_on_time_ = false;  ///< flow = "prescribed" with an expression of t
   std::unique_ptr<Contact> contact_;
+  std::unique_ptr<RigidBodies> bodies_;    // null unless a solid is rigid
   Field cfx_, cfy_;                        // contact force density of the last step
   std::unique_ptr<PoissonSolver> poisson_;
   SolveStats last_stats_;

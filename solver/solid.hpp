@@ -61,6 +61,24 @@ class Solid {
   /// the window when the band comes near its edge.
   void rebuild_level_set();
 
+  /// Lets f(x, y, xi_x, xi_y) overwrite the reference map at every window cell (cell
+  /// centre (x, y)); f returns true where it set xi, and those cells count as known when
+  /// the level set is rebuilt. Ghosts are refilled. For rigid and clamped solids
+  /// (solver/rigid_body.hpp), between extrapolate() and rebuild_level_set().
+  template <class F>
+  void overwrite_reference_map(F&& f) {
+    for (int j = 0; j < nj_; ++j)
+      for (int i = 0; i < ni_; ++i) {
+        double X = xi_x_(i, j), Y = xi_y_(i, j);
+        if (!f(grid_.xc(i0_ + i), grid_.yc(j0_ + j), X, Y)) continue;
+        xi_x_(i, j) = X;
+        xi_y_(i, j) = Y;
+        known_(i, j) = 1;
+      }
+    fill_ghosts(xi_x_, 0);
+    fill_ghosts(xi_y_, 1);
+  }
+
   // --- mixture ---------------------------------------------------------------------
   /// Adds (1 - H) (q_s - q_f) to `out` over the window (density or viscosity blending,
   /// eq. 3.6: q = q_f + sum_i (1 - H_i)(q_s,i - q_f)).

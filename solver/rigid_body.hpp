@@ -1,0 +1,127 @@
+#pragma once
+// Rigid and driven bodies, and soft solids clamped to them (issue 16; docs/bodies.md).
+//
+// A [[solid]] with motion = "fixed", "prescribed" or "pinned" is a RIGID BODY. The fluid
+// sees it through the same blended fields as a soft solid (density and viscosity by eq.
+// 3.6 with its smoothed Heaviside); instead of an elastic stress its velocity is IMPOSED:
+//
+//  * Reference map: set exactly from the pose, xi(x) = c0 + R(-theta)(x - c) on its whole
+//    window (no advection, no extrapolation), and phi = phi0(xi) rebuilt as for any solid.
+//  * Direct forcing (Uhlmann 2005, J. Comput. Phys. 209): after the momentum advection
+//    and the viscous step, with chi = clamp(1/2 - phi/dx, 0, 1) the body's sub-cell area
+//    fraction (not the smoothed Heaviside of eq. 3.5: a forcing repeated every step makes
+//    the whole support of chi move with the body, and that of 1 - H reaches phi = w_T),
+//        u <- chi u_t + (1 - chi) u,   u_t = u_body(x) + dt G_c,
+//    G_c the cell average of the face accelerations (pressure gradient of the previous
+//    step over rho, gravity, contact) that the predictor (eq. 5.3) and step 9 (eq. 5.7)
+//    subtract: so the face velocities predicted inside the body are u_body and, after the
+//    projection, the cell velocity there is u_body + dt (G_c^n - G_c^{n+1}), i.e. u_body
+//    to O(dt |grad dp|), exactly u_body in a steady state.
+//    Divergence: the forced cell field is not divergence-free in the one-cell band
+//    |phi| < dx/2 (a blend of two divergence-free fields); the projection removes that,
+//    so the face velocities stay exactly divergence-free, and the no-slip surface is
+//    located to O(dx) (first order). The density and viscosity still blend with the
+//    smoothed Heaviside like any solid's.
+//  * Force on the body from the fluid (reported as solidK_fx, solidK_fy, solidK_torque):
+//        F = -(1/dt) sum rho (u_new - u_old) dx^2 + d/dt sum rho chi u_body dx^2,
+//    the momentum the forcing removes per step plus the rate of change of the body
+//    region's momentum (the torque likewise, about the reference point).
+//  * fixed: u_body = 0. prescribed: the centre follows path_x(t), path_y(t) (expressions
+//    of t; velocity by a centred difference) and the body turns at rotation_rate(t)
+//    (theta by Simpson's rule per step). pinned: the pivot is fixed; the rotation rate is
+//    the rigid rotation that keeps the angular momentum of the body region about the pivot,
+//        Omega = sum rho chi r x u~ / sum rho chi |r|^2   (u~ = u - dt G_c),
+//    so the forcing exerts no torque (Sharma & Patankar 2005, J. Comput. Phys. 205: the
+//    rigidity constraint), the pin's reaction is the force. The moment of inertia is that
+//    of the blended density over the smoothed shape (rho_s inside); the body's own
+//    density enters through it, so no added-mass instability at low density ratio.
+//
+// A CLAMPED soft solid (clamp = "<rigid body>") has its reference map held at the rigid
+// map of that body wherever its cell centres lie inside the body (phi_body < 0) — the
+// material points there move with the body — after its own advection and extrapolation;
+// contact between the two is off (solver/contact.cpp).
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/field.hpp"
+#include "core/grid.hpp"
+#include "solver/config.hpp"
+#include "solver/expression.hpp"
+
+namespace refmap {
+
+class Solid;
+class CheckpointWriter;
+class CheckpointReader;
+
+/// The prescribed motion of a body: the centre's path and the rotation rate (expressions of t).
+class RigidPath {
+ public:
+  RigidPath() = default;
+  RigidPath(const std::string& x, const std::string& y, const std::string& rate);
+  std::array<double, 2> centre(double t) const;
+  /// d/dt of the path, centred difference (relative step 1e-6: error ~1e-12 |x'''|).
+  std::array<double, 2> velocity(double t) const;
+  double rate(double t) const;
+  /// The angle turned over [t0, t1]: Simpson's rule (exact for rates up to cubic in t).
+  double angle(double t0, double t1) const;
+
+ private:
+  Expression x_, y_, w_;
+};
+
+/// Where a rigid body is: the material point at reference position X sits at
+/// x = c + R(theta) (X - c0), so xi(x) = c0 + R(-theta) (x - c).
+struct RigidPose {
+  double c0x = 0, c0y = 0;  ///< reference point (centre, or the pivot)
+  double cx = 0, cy = 0;    ///< where it is now
+  double theta = 0;         ///< angle turned since the start, counter-clockwise
+  double u = 0, v = 0, omega = 0;  ///< velocity of the reference point and rotation rate
+  std::array<double, 2> xi(double x, double y) const;
+  std::array<double, 2> velocity(double x, double y) const;
+};
+
+/// The fluid's force and torque (about the reference point) on a body at the last step.
+struct BodyLoad {
+  double fx = 0, fy = 0, torque = 0;
+};
+
+class RigidBodies {
+ public:
+  explicit RigidBodies(const Config& cfg);
+  /// True if the scene has a rigid body (else Simulation keeps none of this).
+  static bool needed(const Config& cfg);
+
+  bool rigid(int k) const { return specs_[std::size_t(k)].rigid(); }
+  const RigidPose& pose(int k) const { return pose_[std::size_t(k)]; }
+  const BodyLoad& load(int k) const { return load_[std::size_t(k)]; }
+
+  /// Moves every body from t to t + dt (prescribed: its path; pinned: theta += dt Omega
+  /// with the rate of the last forcing). Before the solids are updated.
+  void advance(double t, double dt);
+  /// Solid k's reference map at the current poses: a rigid body on its whole window; a
+  /// clamped soft solid where it lies inside its body. Touches only solid k (call it for
+  /// the solids concurrently); reads the other solids' shapes only.
+  void place(int k, const std::vector<std::unique_ptr<Solid>>& solids) const;
+  /// The direct forcing of every body on the cell velocities (see the header comment);
+  /// gxf, gyf: the face accelerations the predictor will use; rho: the new density.
+  void force(const std::vector<std::unique_ptr<Solid>>& solids, Field& u, Field& v, const Field& rho,
+             const Field& gxf, const Field& gyf, const Grid& g, double dt);
+
+  void save_state(CheckpointWriter& w) const;
+  void load_state(CheckpointReader& r);
+
+ private:
+  std::vector<SolidSpec> specs_;
+  std::vector<RigidPath> paths_;
+  std::vector<RigidPose> pose_;
+  std::vector<BodyLoad> load_;
+  /// sum rho chi u_body dx^2 (x, y, angular about the reference point) at the last forcing
+  std::vector<std::array<double, 3>> body_momentum_;
+  bool have_momentum_ = false;
+  double t0_ = 0.0;
+};
+
+}  // namespace refmap
