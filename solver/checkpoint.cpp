@@ -9,6 +9,8 @@
 #include "solver/boundary.hpp"
 #include "solver/checkpoint_io.hpp"
 #include "solver/contact.hpp"
+#include "solver/markers.hpp"
+#include "solver/tracers.hpp"
 #include "solver/simulation.hpp"
 #include "solver/solid.hpp"
 
@@ -47,6 +49,9 @@ void Simulation::save_state(CheckpointWriter& w) const {
   for (std::size_t k = 0; k < solids_.size(); ++k) solids_[k]->save_state(w, "solid" + std::to_string(k));
   w.put_i64("sim.contact", contact_ ? 1 : 0);
   if (contact_) contact_->save_state(w);
+  // only scenes with tracers or markers have these records (their scene says so)
+  if (tracers_) tracers_->save_state(w);
+  if (markers_) markers_->save_state(w);
 }
 
 void Simulation::load_state(CheckpointReader& r) {
@@ -67,6 +72,8 @@ void Simulation::load_state(CheckpointReader& r) {
   if (r.get_i64("sim.contact") != (contact_ ? 1 : 0))
     throw CheckpointError("checkpoint " + r.path() + ": contact state does not match the scene");
   if (contact_) contact_->load_state(r);
+  if (tracers_) tracers_->load_state(r);
+  if (markers_) markers_->load_state(r);
   solid_diag_step_ = -1;
   ke_step_ = -1;
   // the pressure solver's operator of the restored density (as after the step that wrote it)

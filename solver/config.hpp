@@ -54,6 +54,14 @@ struct ProbeSpec {
   int points = 2;
 };
 
+/// A [[tracers]] table: `n` points on the segment (x0,y0)-(x1,y1), ends included (line),
+/// or nx x ny points on the lattice of the box with corners (x0,y0), (x1,y1) (box).
+struct TracerSeed {
+  bool box = false;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int n = 0, nx = 0, ny = 0;
+};
+
 struct InitialVelocity {
   InitialKind kind = InitialKind::Zero;
   double u = 0.0, v = 0.0;    ///< uniform velocity
@@ -76,6 +84,10 @@ struct SolidSpec {
   /// Rigid: u = (u, v) + omega x (x - centre); Fluid: keep the fluid's
   SolidVelocity velocity = SolidVelocity::Rigid;
   double u = 0.0, v = 0.0, omega = 0.0;
+  /// material points written to markers.csv (solver/markers.hpp): reference positions,
+  /// then `boundary_markers` points on the reference boundary
+  std::vector<std::array<double, 2>> markers;
+  int boundary_markers = 0;
 };
 
 /// Options shared by all solids ([solids] table).
@@ -149,6 +161,7 @@ struct Config {
   int diagnostics_every = 1;     ///< steps between rows of diagnostics.csv
   double log_interval_s = 2.0;   ///< wall seconds between log lines when not on a terminal
   std::vector<ProbeSpec> probes;
+  std::vector<TracerSeed> tracers;  ///< passive fluid tracers (solver/tracers.hpp)
 
   // solids
   std::vector<SolidSpec> solids;
