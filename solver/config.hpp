@@ -70,6 +70,14 @@ struct InitialVelocity {
   std::string u_expr, v_expr; ///< expression kind: functions of x, y (and pi)
 };
 
+/// `actuation` of a [[solid]] (docs/actuation.md): its stress-free configuration is the
+/// reference one mapped by A(t) = diag(s, 1/s) [[1, g], [0, 1]] (det A = 1), s = stretch_x(t),
+/// g = shear(t), expressions of t (kernels/constitutive_actuation.hpp). Empty: not actuated.
+struct ActuationSpec {
+  std::string stretch_x, shear;
+  bool enabled() const { return !stretch_x.empty() || !shear.empty(); }
+};
+
 /// One solid of a scene ([[solid]] tables).
 struct SolidSpec {
   std::string name;
@@ -88,6 +96,7 @@ struct SolidSpec {
   /// then `boundary_markers` points on the reference boundary
   std::vector<std::array<double, 2>> markers;
   int boundary_markers = 0;
+  ActuationSpec actuation;
 };
 
 /// Options shared by all solids ([solids] table).

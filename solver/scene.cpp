@@ -993,6 +993,39 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
       sp.omega = s.number("omega");
     }
 
+    // ---- actuation (kernels/constitutive_actuation.hpp)
+    if (const toml::node* an = s.node("actuation")) {
+      const toml::table* at = an->as_table();
+      if (!at) s.fail("actuation", "expected an inline table { stretch_x = \"...\", shear = \"...\" }, got " + describe(*an));
+      Table a(ctx, *at, prefix + ".actuation", "solid.actuation");
+      a.allow();
+      for (const char* k : {"stretch_x", "shear"}) {
+        if (!a.has(k)) continue;
+        const toml::node* n = a.node(k);
+        std::string text;
+        if (n->as_integer()) text = std::to_string(n->as_integer()->get());
+        else if (n->as_floating_point()) {
+          char buf[40];
+          std::snprintf(buf, sizeof buf, "%.17g", n->as_floating_point()->get());
+          text = buf;
+        } else {
+          text = a.string(k);
+        }
+        try {
+          const Expression e(text);
+          const double v = e.eval(0.0, 0.0, cfg.t_start);
+          const bool stretch = std::string(k) == "stretch_x";
+          if (stretch ? !(v > 0.0 && std::isfinite(v)) : !std::isfinite(v))
+            a.fail(k, std::string("must be ") + (stretch ? "a finite number > 0" : "finite") + ", got " + fmt_num(v) +
+                          " at t = " + fmt_num(cfg.t_start));
+        } catch (const std::invalid_argument& ex) {
+          a.fail(k, "invalid expression " + dq(text) + ": " + ex.what());
+        }
+        (std::string(k) == "stretch_x" ? sp.actuation.stretch_x : sp.actuation.shear) = text;
+      }
+      if (!sp.actuation.enabled()) s.fail("actuation", "give stretch_x and/or shear");
+    }
+
     // ---- material points (solver/markers.hpp)
     sp.markers = s.points("markers");
     for (const auto& m : sp.markers)

@@ -318,6 +318,18 @@ std::vector<KeyDef> build_keys() {
               "also this many material points on the reference boundary, at equal angles about the centre of "
               "the shape's bounding box (which must lie inside the shape)"),
 
+      shown_default(key("solid", "actuation", KT::InlineTable, {}, {},
+                        "inline table `{ stretch_x = \"...\", shear = \"...\" }`: a stress-free configuration that "
+                        "changes in time (see `solid.actuation` below, docs/actuation.md)"),
+                    "none"),
+      shown_default(key("solid.actuation", "stretch_x", KT::Expression, {}, text_range("> 0 at every t"),
+                        "s(t): the stress-free shape is the reference one stretched by s along x and by 1/s along y "
+                        "(area kept)"),
+                    "`1`"),
+      shown_default(key("solid.actuation", "shear", KT::Expression, {}, {},
+                        "g(t): then sheared, x += g y (A = diag(s, 1/s) [[1, g], [0, 1]])"),
+                    "`0`"),
+
       boolean("contact", "enabled", dc.enabled, "contact force on (the gaps and events are reported either way)"),
       boolean("contact", "walls", dc.walls,
               "also repulsion from the no_slip, moving_wall and free_slip sides (periodic sides never repel)"),
@@ -381,6 +393,9 @@ const std::vector<TableDef>& scene_tables() {
       {"solid", "`[[solid]]`", false, true, false,
        "A shape key that does not belong to the chosen `shape` is an error, as are `u`, `v`, `omega` with "
        "`velocity = \"fluid\"`."},
+      {"solid.actuation", "`solid.actuation` as an inline table", false, false, true,
+       "Expressions of `t` (see *Expressions*); the stress is that of the elastic part F A(t)^-1 of the deformation, so "
+       "the solid relaxes towards its reference shape mapped by A(t) (docs/actuation.md)."},
       {"contact", "`[contact]`", false, false, false,
        "On by default whenever there are solids and `solver.flow = \"solve\"`."},
   };
@@ -426,6 +441,7 @@ std::string key_type_text(const KeyDef& k) {
     }
     case KeyType::Vec2: t = "[float, float]"; break;
     case KeyType::Points: t = "[[float, float], ...]"; break;
+    case KeyType::InlineTable: t = "inline table"; break;
     case KeyType::Expression: t = "expression (string or number)"; break;
     case KeyType::Boundary: t = "boundary condition"; break;
   }

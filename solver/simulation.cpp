@@ -14,6 +14,7 @@
 #include "kernels/rk4.hpp"
 #include "kernels/solid_stress.hpp"
 #include "kernels/viscous.hpp"
+#include "solver/actuation.hpp"
 #include "solver/boundary.hpp"
 #include "solver/expression.hpp"
 #include "solver/markers.hpp"
@@ -48,6 +49,14 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
     tracers_ = std::make_unique<Tracers>(cfg_.grid, tracer_seeds(cfg_.tracers), cfg_.bc[0].type == BcType::Periodic,
                                          cfg_.bc[2].type == BcType::Periodic);
   if (auto m = std::make_unique<Markers>(solids_, cfg_.grid); !m->empty()) markers_ = std::move(m);
+  for (const SolidSpec& sp : cfg_.solids)
+    if (sp.actuation.enabled()) {
+      actuation_.resize(cfg_.solids.size());
+      break;
+    }
+  for (std::size_t k = 0; k < actuation_.size(); ++k)
+    if (cfg_.solids[k].actuation.enabled())
+      actuation_[k] = std::make_unique<Actuation>(cfg_.solids[k].actuation, cfg_.solids[k].name);
   if (!solids_.empty()) {
     // velocity scale of the contact pressure (solver/contact.hpp): the largest initial
     // speed on the grid and the free-fall speed over the domain along g
@@ -341,6 +350,12 @@ void Simulation::add_contact_face_accel() {
 }
 
 double Simulation::step(double dt) {
+  if (!actuation_.empty()) {
+    // actuated solids: the stress of this step is that of the configuration at its end
+    if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
+    for (std::size_t k = 0; k < solids_.size(); ++k)
+      if (actuation_[k]) solids_[k]->set_actuation(actuation_[k]->at(t_ + dt));
+  }
   if (!tracers_ && !markers_) return step_state(dt);
   // tracers see the velocity at both ends of the step (solver/tracers.hpp)
   if (tracers_) {

@@ -20,6 +20,7 @@ class CheckpointWriter;
 class CheckpointReader;
 class Tracers;
 class Markers;
+class Actuation;
 
 class Simulation {
  public:
@@ -161,6 +162,7 @@ class Simulation {
   std::unique_ptr<Tracers> tracers_;
   std::unique_ptr<Markers> markers_;
   Field tu_, tv_;                          // end-of-step velocity with ghosts, for the tracers
+  std::vector<std::unique_ptr<Actuation>> actuation_;  ///< per solid (null: not actuated)
 };
 
 }  // namespace refmap
