@@ -16,6 +16,7 @@
 #include <concepts>
 #include <utility>
 
+#include "kernels/constitutive_actuation.hpp"
 #include "kernels/constitutive_kinematics.hpp"
 #include "kernels/constitutive_neo_hookean.hpp"
 #include "kernels/constitutive_strain_stiffening.hpp"
@@ -31,6 +32,7 @@ concept ConstitutiveModel = requires(const M& m, const Sym2& t) {
 };
 
 static_assert(ConstitutiveModel<NeoHookean> && ConstitutiveModel<StrainStiffening>);
+static_assert(ConstitutiveModel<Actuated<NeoHookean>> && ConstitutiveModel<Actuated<StrainStiffening>>);
 
 enum class ConstitutiveLaw { NeoHookean, StrainStiffening };
 

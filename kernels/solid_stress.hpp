@@ -102,7 +102,7 @@ void cell_stress(const M& model, CView xi_x, CView xi_y, CView phi, int ni, int 
       const double gxy = (xn[i] - xs[i]) * inv2;
       const double gyx = (yc[i + 1] - yc[i - 1]) * inv2;
       const double gyy = (yn[i] - ys[i]) * inv2;
-      const Sym2 s = m.stress(left_cauchy_green(gxx, gxy, gyx, gyy));
+      const Sym2 s = m.stress(elastic_left_cauchy_green(m, gxx, gxy, gyx, gyy));
       const bool in = ph[i] < phi_max;  // false for NaN phi too
       oxx[i] = in ? s.xx : 0.0;
       oxy[i] = in ? s.xy : 0.0;
@@ -153,7 +153,7 @@ inline void x_face_flux(const M& model, CView xx, CView xy, int i, int j, double
   const double gyx = (xy(i, j) - xy(i - 1, j)) * inv;
   const double gxy = 0.25 * (xx(i, j + 1) - xx(i, j - 1) + xx(i - 1, j + 1) - xx(i - 1, j - 1)) * inv;
   const double gyy = 0.25 * (xy(i, j + 1) - xy(i, j - 1) + xy(i - 1, j + 1) - xy(i - 1, j - 1)) * inv;
-  const Sym2 s = model.stress(left_cauchy_green(gxx, gxy, gyx, gyy));
+  const Sym2 s = model.stress(elastic_left_cauchy_green(model, gxx, gxy, gyx, gyy));
   fxx = s.xx;
   fxy = s.xy;
 }
@@ -166,7 +166,7 @@ inline void y_face_flux(const M& model, CView xx, CView xy, int i, int j, double
   const double gyy = (xy(i, j) - xy(i, j - 1)) * inv;
   const double gxx = 0.25 * (xx(i + 1, j) - xx(i - 1, j) + xx(i + 1, j - 1) - xx(i - 1, j - 1)) * inv;
   const double gyx = 0.25 * (xy(i + 1, j) - xy(i - 1, j) + xy(i + 1, j - 1) - xy(i - 1, j - 1)) * inv;
-  const Sym2 s = model.stress(left_cauchy_green(gxx, gxy, gyx, gyy));
+  const Sym2 s = model.stress(elastic_left_cauchy_green(model, gxx, gxy, gyx, gyy));
   fyx = s.xy;
   fyy = s.yy;
 }

@@ -6,7 +6,7 @@
                                [--reference-path FILE[:LABEL] ...] [--dpi 110]
 
 RUN_DIR is what `refmap run` wrote: frame_NNNNN.vti (+ <name>.pvd), diagnostics.csv, and
-optionally probe_*.csv and events.csv. Figures go to RUN_DIR/figures/ unless --out is given:
+optionally probe_*.csv, events.csv, tracers.csv and markers.csv. Figures go to RUN_DIR/figures/ unless --out is given:
 
 * snapshots_<field>.png  colour field at the chosen times (nearest output frame; the panel
                          title gives the frame's actual time). In the fluid the chosen field;
@@ -19,6 +19,9 @@ optionally probe_*.csv and events.csv. Figures go to RUN_DIR/figures/ unless --o
 * solids.png             per solid: centroid path (with --reference-path overlays), area
                          change, and, when the columns exist, sigma_max, gap_solid, gap_wall;
                          restitution values from events.csv when present
+* tracers.png            (with tracers.csv / markers.csv) the paths of the fluid tracers and
+                         of the solids' material points over the frames, start and end
+                         marked; the snapshots also show them as dots at each frame's time
 * probes.png             the probe_*.csv profiles (value along the probe), with reference
                          points from --probe-reference (e.g. Ghia's centreline tables)
 * path_distance.txt      with --reference-path: distances between our centroid path and
@@ -225,6 +228,70 @@ FLUID_LABELS = {"vorticity": r"vorticity $\omega$", "speed": r"speed $|u|$", "p"
 CLIPPED = ("vorticity", "p")
 
 
+def read_points(run):
+    """tracers.csv and markers.csv -> {"tracers": table, "markers": table} (those present)."""
+    out = {}
+    for name in ("tracers", "markers"):
+        path = os.path.join(run, name + ".csv")
+        if os.path.exists(path):
+            t = read_table(path)
+            if all(k in t for k in ("frame", "id", "x", "y")):
+                out[name] = t
+            else:
+                note(f"{path}: expected columns frame,...,id,x,y; ignored")
+    return out
+
+
+def frame_index(path):
+    m = re.search(r"frame_(\d+)\.vti$", path)
+    return int(m.group(1)) if m else None
+
+
+def draw_points(ax, points, frame):
+    """Dots of the tracers (white) and markers (black) of one frame."""
+    for name, style in (("tracers", dict(c="w", edgecolors="k", s=9, linewidths=0.4)),
+                        ("markers", dict(c="k", s=7))):
+        t = points.get(name)
+        if t is None or frame is None:
+            continue
+        sel = t["frame"] == frame
+        if np.any(sel):
+            ax.scatter(t["x"][sel], t["y"][sel], zorder=5, **style)
+
+
+def plot_points(points, outdir, title, dpi, domain):
+    """Paths of every tracer and marker over the frames."""
+    if not points:
+        return None
+    lx, ly = domain[1] - domain[0], domain[3] - domain[2]
+    w = 5.0
+    fig, ax = plt.subplots(figsize=(w + 0.6, max(w * ly / lx, 1.5) + 0.6), layout="constrained")
+    for name, colour in (("tracers", "tab:blue"), ("markers", "tab:red")):
+        t = points.get(name)
+        if t is None:
+            continue
+        keys = list(zip(t["solid"], t["id"])) if "solid" in t else list(t["id"])
+        for k in sorted(set(keys)):
+            sel = np.array([kk == k for kk in keys])
+            order = np.argsort(t["frame"][sel])
+            x, y = t["x"][sel][order], t["y"][sel][order]
+            ax.plot(x, y, "-", color=colour, lw=0.7)
+            ax.plot(x[:1], y[:1], "o", color=colour, ms=2.5)
+            ax.plot(x[-1:], y[-1:], "s", color=colour, ms=2.5)
+        ax.plot([], [], "-", color=colour, label=f"{name} (o start, \u25a0 end)")
+    ax.set_xlim(domain[0], domain[1])
+    ax.set_ylim(domain[2], domain[3])
+    ax.set_aspect("equal")
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    ax.legend(fontsize=8, loc="upper right")
+    ax.set_title(f"{title}: tracer and marker paths", fontsize=11)
+    out = os.path.join(outdir, "tracers.png")
+    fig.savefig(out, dpi=dpi)
+    plt.close(fig)
+    return out
+
+
 def pick_frames(series, args):
     times = np.array([t for t, _ in series])
     if args.times:
@@ -256,7 +323,9 @@ def robust_range(arrays, symmetric, pct=99.0):
 
 
 def plot_snapshots(series, args, outdir, title):
-    frames = [(t, Frame(p)) for t, p in pick_frames(series, args)]
+    picked = pick_frames(series, args)
+    frames = [(t, Frame(p)) for t, p in picked]
+    fr_paths = [p for _, p in picked]
     field = args.field
     f0 = frames[0][1]
     if field not in f0.names():
@@ -318,6 +387,7 @@ def plot_snapshots(series, args, outdir, title):
             phi = fr.fields["phi"]
             if phi.min() < 0 < phi.max():
                 ax.contour(X, Y, phi, levels=[0.0], colors="k", linewidths=0.9)
+        draw_points(ax, args.points, frame_index(fr_paths[k]))
         ax.set_aspect("equal")
         ax.set_xlim(fr.extent[0], fr.extent[1])
         ax.set_ylim(fr.extent[2], fr.extent[3])
@@ -574,6 +644,7 @@ def main(argv=None):
 
     written = []
     domain = None
+    args.points = read_points(run)
     if series and not args.no_snapshots:
         for field in [f.strip() for f in args.field.split(",") if f.strip()]:
             args_f = argparse.Namespace(**vars(args))
@@ -614,6 +685,8 @@ def main(argv=None):
                 f.write("\n".join(lines) + "\n")
             print("\n".join(lines[3:]))
             written.append(txt)
+    if args.points:
+        written.append(plot_points(args.points, outdir, title, args.dpi, domain or (0.0, 1.0, 0.0, 1.0)))
     written.append(plot_probes(run, outdir, title, args.dpi, parse_probe_refs(args.probe_reference)))
     for w in written:
         if w:

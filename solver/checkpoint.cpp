@@ -9,6 +9,8 @@
 #include "solver/boundary.hpp"
 #include "solver/checkpoint_io.hpp"
 #include "solver/contact.hpp"
+#include "solver/markers.hpp"
+#include "solver/tracers.hpp"
 #include "solver/simulation.hpp"
 #include "solver/solid.hpp"
 
@@ -48,6 +50,9 @@ void Simulation::save_state(CheckpointWriter& w) const {
   w.put_i64("sim.contact", contact_ ? 1 : 0);
   if (contact_) contact_->save_state(w);
   if (bodies_) bodies_->save_state(w);  // rigid bodies' poses (solver/rigid_body.hpp)
+  // only scenes with tracers or markers have these records (their scene says so)
+  if (tracers_) tracers_->save_state(w);
+  if (markers_) markers_->save_state(w);
 }
 
 void Simulation::load_state(CheckpointReader& r) {
@@ -69,6 +74,8 @@ void Simulation::load_state(CheckpointReader& r) {
     throw CheckpointError("checkpoint " + r.path() + ": contact state does not match the scene");
   if (contact_) contact_->load_state(r);
   if (bodies_) bodies_->load_state(r);
+  if (tracers_) tracers_->load_state(r);
+  if (markers_) markers_->load_state(r);
   solid_diag_step_ = -1;
   ke_step_ = -1;
   // the pressure solver's operator of the restored density (as after the step that wrote it)

@@ -57,12 +57,28 @@ struct ProbeSpec {
   int points = 2;
 };
 
+/// A [[tracers]] table: `n` points on the segment (x0,y0)-(x1,y1), ends included (line),
+/// or nx x ny points on the lattice of the box with corners (x0,y0), (x1,y1) (box).
+struct TracerSeed {
+  bool box = false;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int n = 0, nx = 0, ny = 0;
+};
+
 struct InitialVelocity {
   InitialKind kind = InitialKind::Zero;
   double u = 0.0, v = 0.0;    ///< uniform velocity
   double amplitude = 1.0;     ///< Taylor-Green: u = A sin(k(x-x0)) cos(k(y-y0)), v = -A cos sin
   double wavenumber = 0.0;    ///< k; 0 means 2 pi / lx
   std::string u_expr, v_expr; ///< expression kind: functions of x, y (and pi)
+};
+
+/// `actuation` of a [[solid]] (docs/actuation.md): its stress-free configuration is the
+/// reference one mapped by A(t) = diag(s, 1/s) [[1, g], [0, 1]] (det A = 1), s = stretch_x(t),
+/// g = shear(t), expressions of t (kernels/constitutive_actuation.hpp). Empty: not actuated.
+struct ActuationSpec {
+  std::string stretch_x, shear;
+  bool enabled() const { return !stretch_x.empty() || !shear.empty(); }
 };
 
 /// One solid of a scene ([[solid]] tables).
@@ -91,6 +107,11 @@ struct SolidSpec {
   std::string clamp;
   int clamp_index = -1;
   bool rigid() const { return motion != SolidMotion::Free; }
+  /// material points written to markers.csv (solver/markers.hpp): reference positions,
+  /// then `boundary_markers` points on the reference boundary
+  std::vector<std::array<double, 2>> markers;
+  int boundary_markers = 0;
+  ActuationSpec actuation;
 };
 
 /// Options shared by all solids ([solids] table).
@@ -164,6 +185,7 @@ struct Config {
   int diagnostics_every = 1;     ///< steps between rows of diagnostics.csv
   double log_interval_s = 2.0;   ///< wall seconds between log lines when not on a terminal
   std::vector<ProbeSpec> probes;
+  std::vector<TracerSeed> tracers;  ///< passive fluid tracers (solver/tracers.hpp)
 
   // solids
   std::vector<SolidSpec> solids;

@@ -14,10 +14,12 @@
 #include "solver/csv.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/health.hpp"
+#include "solver/markers.hpp"
 #include "solver/probes.hpp"
 #include "solver/progress.hpp"
 #include "solver/simulation.hpp"
 #include "solver/stop_signal.hpp"
+#include "solver/tracers.hpp"
 #include "solver/vtk.hpp"
 
 namespace refmap {
@@ -80,7 +82,14 @@ class RunOutput {
                                        diagnostic_columns(sim_), head.str());
     if (cfg.write_vtk)  // no .pvd without frames
       pvd_ = std::make_unique<PvdSeries>((fs::path(dir_) / (cfg.name + ".pvd")).string());
+    if (cfg.write_vtk && sim_.tracers())
+      tracers_csv_ = std::make_unique<CsvWriter>((fs::path(dir_) / "tracers.csv").string(), tracer_columns());
+    if (cfg.write_vtk && sim_.markers())
+      markers_csv_ = std::make_unique<CsvWriter>((fs::path(dir_) / "markers.csv").string(), marker_columns());
   }
+
+  static std::vector<std::string> tracer_columns() { return {"frame", "t", "id", "x", "y"}; }
+  static std::vector<std::string> marker_columns() { return {"frame", "t", "solid", "id", "x", "y"}; }
 
   /// The outputs as they were when the checkpoint was written: diagnostics.csv cut back to
   /// its rows then, frames written after it removed, the .pvd series rewritten.
@@ -94,6 +103,14 @@ class RunOutput {
     }
     const auto bytes = std::size_t(r.get_i64("run.csv_bytes"));
     const long rows = long(r.get_i64("run.csv_rows"));
+    // tracers.csv and markers.csv (only scenes with tracers / markers have the records)
+    std::int64_t point_csv[2][2] = {{0, 0}, {0, 0}};
+    const bool has_points[2] = {sim_.config().write_vtk && sim_.tracers(), sim_.config().write_vtk && sim_.markers()};
+    for (int m = 0; m < 2; ++m)
+      if (has_points[m]) {
+        point_csv[m][0] = r.get_i64(m == 0 ? "run.tracers_bytes" : "run.markers_bytes");
+        point_csv[m][1] = r.get_i64(m == 0 ? "run.tracers_rows" : "run.markers_rows");
+      }
     if (!r.at_end()) throw CheckpointError("checkpoint " + r.path() + ": records left over at the end");
     if (dir_.empty()) return;
     // everything is checked before any file is touched: a checkpoint that cannot be
@@ -103,6 +120,12 @@ class RunOutput {
     if (bytes > 0 && (fs::file_size(diag, ec) < bytes || ec))
       throw CheckpointError(diag.string() + " is shorter than when the checkpoint " + r.path() +
                             " was written: the run cannot be continued");
+    for (int m = 0; m < 2; ++m) {
+      const fs::path f = fs::path(dir_) / (m == 0 ? "tracers.csv" : "markers.csv");
+      if (point_csv[m][0] > 0 && (fs::file_size(f, ec) < std::uintmax_t(point_csv[m][0]) || ec))
+        throw CheckpointError(f.string() + " is shorter than when the checkpoint " + r.path() +
+                              " was written: the run cannot be continued");
+    }
     fs::create_directories(dir_);
     for (const auto& e : fs::directory_iterator(dir_, ec)) {
       const std::string f = e.path().filename().string();
@@ -119,6 +142,12 @@ class RunOutput {
       pvd_ = std::make_unique<PvdSeries>((fs::path(dir_) / (cfg.name + ".pvd")).string());
       pvd_->restore(entries);
     }
+    if (point_csv[0][0] > 0)
+      tracers_csv_ = std::make_unique<CsvWriter>(CsvWriter::resume((fs::path(dir_) / "tracers.csv").string(),
+                                                                   tracer_columns(), point_csv[0][0], point_csv[0][1]));
+    if (point_csv[1][0] > 0)
+      markers_csv_ = std::make_unique<CsvWriter>(CsvWriter::resume((fs::path(dir_) / "markers.csv").string(),
+                                                                   marker_columns(), point_csv[1][0], point_csv[1][1]));
   }
 
   /// The run's own records of a checkpoint (after flushing diagnostics.csv).
@@ -133,6 +162,14 @@ class RunOutput {
     }
     w.put_i64("run.csv_bytes", csv_ ? std::int64_t(csv_->bytes()) : 0);
     w.put_i64("run.csv_rows", csv_ ? csv_->rows() : 0);
+    if (sim_.config().write_vtk && sim_.tracers()) {
+      w.put_i64("run.tracers_bytes", tracers_csv_ ? std::int64_t(tracers_csv_->bytes()) : 0);
+      w.put_i64("run.tracers_rows", tracers_csv_ ? tracers_csv_->rows() : 0);
+    }
+    if (sim_.config().write_vtk && sim_.markers()) {
+      w.put_i64("run.markers_bytes", markers_csv_ ? std::int64_t(markers_csv_->bytes()) : 0);
+      w.put_i64("run.markers_rows", markers_csv_ ? markers_csv_->rows() : 0);
+    }
   }
   const std::string& dir() const { return dir_; }
 
@@ -148,7 +185,7 @@ class RunOutput {
       const bool ours = (f.rfind("frame_", 0) == 0 && (e.path().extension() == ".vti" || f.ends_with(".vti.tmp"))) ||
                         e.path().extension() == ".pvd" || f.ends_with(".pvd.tmp") ||
                         (f.rfind("probe_", 0) == 0 && e.path().extension() == ".csv") || f == "diagnostics.csv" ||
-                        f == "events.csv" || f == "timings.csv" || f.rfind("checkpoint.bin", 0) == 0;
+                        f == "tracers.csv" || f == "markers.csv" || f == "events.csv" || f == "timings.csv" || f.rfind("checkpoint.bin", 0) == 0;
       if (ours && e.is_regular_file(ec)) stale.push_back(e.path());
     }
     for (const auto& p : stale) fs::remove(p, ec);
@@ -164,6 +201,16 @@ class RunOutput {
     std::snprintf(name, sizeof name, "frame_%05d.vti", frame_++);
     write_frame(name);
     pvd_->add(sim_.time(), name);
+    points(frame_ - 1);
+  }
+
+  /// The rows of tracers.csv and markers.csv of frame `f` (the current state).
+  void points(int f) {
+    if (const Tracers* tr = sim_.tracers(); tr && tracers_csv_)
+      for (int k = 0; k < tr->size(); ++k) tracers_csv_->row({double(f), sim_.time(), double(k), tr->x(k), tr->y(k)});
+    if (const Markers* mk = sim_.markers(); mk && markers_csv_)
+      for (const Markers::Point& p : mk->points())
+        markers_csv_->row({double(f), sim_.time(), double(p.solid), double(p.id), p.x, p.y});
   }
 
   /// frame_failed.vti: the state a health check refused, so that the failure can be looked
@@ -220,6 +267,8 @@ class RunOutput {
 
   void flush() {
     if (csv_) csv_->flush();
+    if (tracers_csv_) tracers_csv_->flush();
+    if (markers_csv_) markers_csv_->flush();
   }
 
   /// events.csv: the contact event log, one "time,solid,event,value,with" row per event.
@@ -239,6 +288,7 @@ class RunOutput {
   std::string dir_;
   std::unique_ptr<CsvWriter> csv_;
   std::unique_ptr<PvdSeries> pvd_;
+  std::unique_ptr<CsvWriter> tracers_csv_, markers_csv_;  ///< only with tracers / markers and VTK frames
   int frame_ = 0;
 };
 

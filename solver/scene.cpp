@@ -360,6 +360,32 @@ class Table {
     fail(key, "expected a string, got " + describe(*n));
   }
 
+  /// A list of points [[x, y], ...] (KeyType::Points; absent: empty).
+ public:
+  std::vector<std::array<double, 2>> points(std::string_view key) const {
+    std::vector<std::array<double, 2>> out;
+    const toml::node* n = node(key);
+    if (!n) return out;
+    const toml::array* a = n->as_array();
+    const std::string want = "expected a list of points [[x, y], ...], ";
+    if (!a) fail(key, want + "got " + describe(*n));
+    for (std::size_t k = 0; k < a->size(); ++k) {
+      const toml::array* p = a->get(k)->as_array();
+      if (!p || p->size() != 2) fail(key, want + "element " + std::to_string(k) + " is " + describe(*a->get(k)));
+      std::array<double, 2> xy{};
+      for (std::size_t i = 0; i < 2; ++i) {
+        const toml::node& e = *p->get(i);
+        if (auto f = e.as_floating_point()) xy[i] = f->get();
+        else if (auto in = e.as_integer()) xy[i] = double(in->get());
+        else fail(key, want + "element " + std::to_string(k) + " has " + describe(e));
+        if (!std::isfinite(xy[i])) fail(key, "coordinates must be finite numbers");
+      }
+      out.push_back(xy);
+    }
+    return out;
+  }
+
+ private:
   std::array<double, 2> read_vec2(std::string_view key, std::optional<std::array<double, 2>> def) const {
     const toml::node* n = node(key);
     if (!n) {
@@ -791,6 +817,46 @@ void parse_probes(const Ctx& ctx, const Table& top, Config& cfg) {
   }
 }
 
+void parse_tracers(const Ctx& ctx, const Table& top, Config& cfg) {
+  const toml::node* n = top.node("tracers");
+  if (!n) return;
+  const toml::array* arr = n->as_array();
+  if (!arr) top.fail("tracers", "expected an array of tables ([[tracers]] sections), got " + describe(*n));
+  const Grid& g = cfg.grid;
+  const double tol = 1e-12 * std::max(g.lx(), g.ly());
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    const std::string prefix = "tracers[" + std::to_string(i) + "]";
+    const toml::table* t = arr->get(i)->as_table();
+    if (!t) ctx.fail(prefix, arr->get(i), "expected a table ([[tracers]] section), got " + describe(*arr->get(i)));
+    Table p(ctx, *t, prefix, "tracers");
+    p.allow();
+    TracerSeed sd;
+    sd.box = p.has("box");
+    const char* key = sd.box ? "box" : "line";
+    if (sd.box && p.has("line")) p.fail("line", "give either `line` (with `n`) or `box` (with `nx`, `ny`), not both");
+    if (!sd.box && !p.has("line")) ctx.fail(prefix, t, "needs `line` (with `n`) or `box` (with `nx`, `ny`)");
+    if (const char* other = sd.box ? "n" : (p.has("nx") ? "nx" : p.has("ny") ? "ny" : nullptr); other && p.has(other))
+      p.fail(other, std::string("not used with `") + key + "`");
+    const auto pts = p.points(key);
+    p.require(pts.size() == 2, key, "expected two points [[x0, y0], [x1, y1]], got " + std::to_string(pts.size()));
+    for (const auto& xy : pts)
+      p.require(xy[0] >= g.x0 - tol && xy[0] <= g.x0 + g.lx() + tol && xy[1] >= g.y0 - tol && xy[1] <= g.y0 + g.ly() + tol,
+                key, "point [" + fmt_num(xy[0]) + ", " + fmt_num(xy[1]) + "] is outside the domain [" + fmt_num(g.x0) +
+                         ", " + fmt_num(g.x0 + g.lx()) + "] x [" + fmt_num(g.y0) + ", " + fmt_num(g.y0 + g.ly()) + "]");
+    sd.x0 = std::clamp(pts[0][0], g.x0, g.x0 + g.lx());
+    sd.y0 = std::clamp(pts[0][1], g.y0, g.y0 + g.ly());
+    sd.x1 = std::clamp(pts[1][0], g.x0, g.x0 + g.lx());
+    sd.y1 = std::clamp(pts[1][1], g.y0, g.y0 + g.ly());
+    if (sd.box) {
+      sd.nx = int(p.integer("nx"));
+      sd.ny = int(p.integer("ny"));
+    } else {
+      sd.n = int(p.integer("n"));
+    }
+    cfg.tracers.push_back(sd);
+  }
+}
+
 void parse_solids_options(const Ctx& ctx, const Table& top, Config& cfg) {
   const toml::table* tp = top.table("solids", false);
   if (!tp) return;
@@ -1011,6 +1077,51 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
       sp.v = sp.omega * (ccx - sp.pivot_x);
     }
     if (s.has("clamp")) sp.clamp = s.string("clamp");
+
+    // ---- actuation (kernels/constitutive_actuation.hpp)
+    if (const toml::node* an = s.node("actuation")) {
+      const toml::table* at = an->as_table();
+      if (!at) s.fail("actuation", "expected an inline table { stretch_x = \"...\", shear = \"...\" }, got " + describe(*an));
+      Table a(ctx, *at, prefix + ".actuation", "solid.actuation");
+      a.allow();
+      for (const char* k : {"stretch_x", "shear"}) {
+        if (!a.has(k)) continue;
+        const toml::node* n = a.node(k);
+        std::string text;
+        if (n->as_integer()) text = std::to_string(n->as_integer()->get());
+        else if (n->as_floating_point()) {
+          char buf[40];
+          std::snprintf(buf, sizeof buf, "%.17g", n->as_floating_point()->get());
+          text = buf;
+        } else {
+          text = a.string(k);
+        }
+        try {
+          const Expression e(text);
+          const double v = e.eval(0.0, 0.0, cfg.t_start);
+          const bool stretch = std::string(k) == "stretch_x";
+          if (stretch ? !(v > 0.0 && std::isfinite(v)) : !std::isfinite(v))
+            a.fail(k, std::string("must be ") + (stretch ? "a finite number > 0" : "finite") + ", got " + fmt_num(v) +
+                          " at t = " + fmt_num(cfg.t_start));
+        } catch (const std::invalid_argument& ex) {
+          a.fail(k, "invalid expression " + dq(text) + ": " + ex.what());
+        }
+        (std::string(k) == "stretch_x" ? sp.actuation.stretch_x : sp.actuation.shear) = text;
+      }
+      if (!sp.actuation.enabled()) s.fail("actuation", "give stretch_x and/or shear");
+    }
+
+    // ---- material points (solver/markers.hpp)
+    sp.markers = s.points("markers");
+    for (const auto& m : sp.markers)
+      s.require(shape->phi0(m[0], m[1]) <= 1e-6 * g.dx, "markers",
+                "point [" + fmt_num(m[0]) + ", " + fmt_num(m[1]) + "] is not in the solid's reference configuration");
+    sp.boundary_markers = int(s.integer("boundary_markers"));
+    if (sp.boundary_markers > 0) {
+      const BoundingBox mb = shape->bbox();
+      s.require(shape->phi0(0.5 * (mb.xmin + mb.xmax), 0.5 * (mb.ymin + mb.ymax)) < 0.0, "boundary_markers",
+                "the centre of the shape's bounding box lies outside the shape: give the points with `markers`");
+    }
     cfg.solids.push_back(std::move(sp));
   }
   // clamped soft solids: the body they are clamped to must be a rigid solid of the scene
@@ -1166,6 +1277,7 @@ Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>&
   parse_solver(ctx, top, cfg);
   parse_output(ctx, top, cfg);
   parse_probes(ctx, top, cfg);
+  parse_tracers(ctx, top, cfg);
   parse_solids_options(ctx, top, cfg);  // after parse_solver: the solids need cfg.flow
   parse_solids(ctx, top, cfg);
   parse_contact(ctx, top, cfg);  // after parse_solids_options: the range is checked against the band

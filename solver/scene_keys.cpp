@@ -217,6 +217,17 @@ std::vector<KeyDef> build_keys() {
       vec2("probe", "end", std::nullopt, "last point (x, y), inside the domain (walls included)"),
       integer("probe", "points", std::nullopt, in(2, false, 10000000, false), "number of samples"),
 
+      shown_default(key("tracers", "line", KT::Points, {}, text_range("two points inside the domain"),
+                        "seed `n` tracers on the segment [[x0, y0], [x1, y1]], ends included (give `line` or `box`)"),
+                    "—"),
+      shown_default(integer("tracers", "n", {}, in(1, false, 10000000, false), "number of tracers on `line`"), "—"),
+      shown_default(key("tracers", "box", KT::Points, {}, text_range("two corners inside the domain"),
+                        "seed `nx` x `ny` tracers on the lattice of the box with corners [[x0, y0], [x1, y1]], corners "
+                        "included"),
+                    "—"),
+      shown_default(integer("tracers", "nx", {}, in(1, false, 100000, false), "tracers along x in `box`"), "—"),
+      shown_default(integer("tracers", "ny", {}, in(1, false, 100000, false), "tracers along y in `box`"), "—"),
+
       choice<ExtrapolationMethod>("solids", "extrapolation", dso.extrapolation,
                                   "extrapolation of the reference map into the band: least squares (the paper's "
                                   "Algorithm 2) or the PDE baseline (Aslam 2004)"),
@@ -325,6 +336,25 @@ std::vector<KeyDef> build_keys() {
                              "reference map moves with it, and contact between the two is off"),
                          "not clamped"),
            "motion", {"free"}),
+      shown_default(key("solid", "markers", KT::Points, {}, text_range("points of the reference configuration"),
+                        "material points (X, Y) of the reference configuration, followed through xi and written to "
+                        "`markers.csv` (docs/tracers.md)"),
+                    "none"),
+      integer("solid", "boundary_markers", ds.boundary_markers, ge(0),
+              "also this many material points on the reference boundary, at equal angles about the centre of "
+              "the shape's bounding box (which must lie inside the shape)"),
+
+      shown_default(key("solid", "actuation", KT::InlineTable, {}, {},
+                        "inline table `{ stretch_x = \"...\", shear = \"...\" }`: a stress-free configuration that "
+                        "changes in time (see `solid.actuation` below, docs/actuation.md)"),
+                    "none"),
+      shown_default(key("solid.actuation", "stretch_x", KT::Expression, {}, text_range("> 0 at every t"),
+                        "s(t): the stress-free shape is the reference one stretched by s along x and by 1/s along y "
+                        "(area kept)"),
+                    "`1`"),
+      shown_default(key("solid.actuation", "shear", KT::Expression, {}, {},
+                        "g(t): then sheared, x += g y (A = diag(s, 1/s) [[1, g], [0, 1]])"),
+                    "`0`"),
 
       boolean("contact", "enabled", dc.enabled, "contact force on (the gaps and events are reported either way)"),
       boolean("contact", "walls", dc.walls,
@@ -382,10 +412,16 @@ const std::vector<TableDef>& scene_tables() {
       {"solver", "`[solver]`", false, false, false, ""},
       {"output", "`[output]`", false, false, false, ""},
       {"probe", "`[[probe]]`", false, true, false, ""},
+      {"tracers", "`[[tracers]]`", false, true, false,
+       "Passive fluid tracers, written to `tracers.csv` at every VTK frame (docs/tracers.md). Each table seeds a "
+       "`line` (with `n`) or a `box` (with `nx`, `ny`)."},
       {"solids", "`[solids]`", false, false, false, "Options shared by all solids; widths are in cells."},
       {"solid", "`[[solid]]`", false, true, false,
        "A shape key that does not belong to the chosen `shape` is an error, as are `u`, `v`, `omega` with "
        "`velocity = \"fluid\"`."},
+      {"solid.actuation", "`solid.actuation` as an inline table", false, false, true,
+       "Expressions of `t` (see *Expressions*); the stress is that of the elastic part F A(t)^-1 of the deformation, so "
+       "the solid relaxes towards its reference shape mapped by A(t) (docs/actuation.md)."},
       {"contact", "`[contact]`", false, false, false,
        "On by default whenever there are solids and `solver.flow = \"solve\"`."},
   };
@@ -430,6 +466,8 @@ std::string key_type_text(const KeyDef& k) {
       return join(q, ", ", " or ", "");
     }
     case KeyType::Vec2: t = "[float, float]"; break;
+    case KeyType::Points: t = "[[float, float], ...]"; break;
+    case KeyType::InlineTable: t = "inline table"; break;
     case KeyType::Expression: t = "expression (string or number)"; break;
     case KeyType::Boundary: t = "boundary condition"; break;
   }

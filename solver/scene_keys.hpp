@@ -28,6 +28,8 @@ enum class KeyType {
   String,
   Choice,      ///< one of `choices` (aliases of solver/option_names.hpp are accepted too)
   Vec2,        ///< [float, float]
+  Points,      ///< [[float, float], ...]: a list of points
+  InlineTable, ///< an inline table whose keys are those of a nested table ("solid.actuation")
   Expression,  ///< string (or a number) parsed by solver/expression.hpp
   Boundary,    ///< a boundary condition: a string or an inline table (table "boundary.side")
 };

@@ -14,8 +14,11 @@
 #include "kernels/rk4.hpp"
 #include "kernels/solid_stress.hpp"
 #include "kernels/viscous.hpp"
+#include "solver/actuation.hpp"
 #include "solver/boundary.hpp"
 #include "solver/expression.hpp"
+#include "solver/markers.hpp"
+#include "solver/tracers.hpp"
 
 namespace refmap {
 
@@ -43,6 +46,18 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
   if (RigidBodies::needed(cfg_)) bodies_ = std::make_unique<RigidBodies>(cfg_);
   poisson_ = make_poisson_solver(cfg_.poisson);
   initialise();
+  if (!cfg_.tracers.empty())
+    tracers_ = std::make_unique<Tracers>(cfg_.grid, tracer_seeds(cfg_.tracers), cfg_.bc[0].type == BcType::Periodic,
+                                         cfg_.bc[2].type == BcType::Periodic);
+  if (auto m = std::make_unique<Markers>(solids_, cfg_.grid); !m->empty()) markers_ = std::move(m);
+  for (const SolidSpec& sp : cfg_.solids)
+    if (sp.actuation.enabled()) {
+      actuation_.resize(cfg_.solids.size());
+      break;
+    }
+  for (std::size_t k = 0; k < actuation_.size(); ++k)
+    if (cfg_.solids[k].actuation.enabled())
+      actuation_[k] = std::make_unique<Actuation>(cfg_.solids[k].actuation, cfg_.solids[k].name);
   if (!solids_.empty()) {
     // velocity scale of the contact pressure (solver/contact.hpp): the largest initial
     // speed on the grid and the free-fall speed over the domain along g
@@ -340,6 +355,33 @@ void Simulation::add_contact_face_accel() {
 }
 
 double Simulation::step(double dt) {
+  if (!actuation_.empty()) {
+    // actuated solids: the stress of this step is that of the configuration at its end
+    if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
+    for (std::size_t k = 0; k < solids_.size(); ++k)
+      if (actuation_[k]) solids_[k]->set_actuation(actuation_[k]->at(t_ + dt));
+  }
+  if (!tracers_ && !markers_) return step_state(dt);
+  // tracers see the velocity at both ends of the step (solver/tracers.hpp)
+  if (tracers_) {
+    tu_ = u_;
+    tv_ = v_;
+    apply_velocity_bc(tu_, tv_, t_);
+    tracers_->begin_step(tu_, tv_);
+  }
+  dt = step_state(dt);
+  ScopedPhase ph(timers_, "tracers");
+  if (tracers_) {
+    tu_ = u_;
+    tv_ = v_;
+    apply_velocity_bc(tu_, tv_, t_);
+    tracers_->advance(tu_, tv_, dt);
+  }
+  if (markers_) markers_->update(solids_);
+  return dt;
+}
+
+double Simulation::step_state(double dt) {
   if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
   if (cfg_.flow == FlowMode::Prescribed) return step_prescribed(dt);
   if (!solids_.empty()) {

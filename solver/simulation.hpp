@@ -19,6 +19,9 @@ namespace refmap {
 
 class CheckpointWriter;
 class CheckpointReader;
+class Tracers;
+class Markers;
+class Actuation;
 
 class Simulation {
  public:
@@ -45,6 +48,10 @@ class Simulation {
   const Field& vf() const { return vf_; }  ///< y-face normal velocity, nx x (ny+1)
   Field& u_mut() { ke_step_ = -1; return u_; }
   Field& v_mut() { ke_step_ = -1; return v_; }
+
+  /// Passive fluid tracers and solid material points (null when the scene has none).
+  const Tracers* tracers() const { return tracers_.get(); }
+  const Markers* markers() const { return markers_.get(); }
 
   /// Cell field by probe/output name: u, v, p, density, speed, vorticity (ghosts filled).
   Field named_field(const std::string& name) const;
@@ -94,6 +101,8 @@ class Simulation {
 
  private:
   void initialise();
+  /// step() without the tracers and markers (which step() moves around it).
+  double step_state(double dt);
   void build_poisson_coefficients();
   // The phases of step(), in order; each books its time under the phase of the same name
   // in the timing table.
@@ -156,6 +165,10 @@ class Simulation {
   std::unique_ptr<PoissonSolver> poisson_;
   SolveStats last_stats_;
   PhaseTimers timers_;
+  std::unique_ptr<Tracers> tracers_;
+  std::unique_ptr<Markers> markers_;
+  Field tu_, tv_;                          // end-of-step velocity with ghosts, for the tracers
+  std::vector<std::unique_ptr<Actuation>> actuation_;  ///< per solid (null: not actuated)
 };
 
 }  // namespace refmap

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 #include "kernels/loop.hpp"
 #include "kernels/reference_map.hpp"
@@ -269,15 +270,23 @@ double Solid::blend_model_stress(const Model& model, Field& sxx, Field& sxy, Fie
   return energy;
 }
 
+template <class F>
+decltype(auto) Solid::with_model(F&& f) const {
+  return with_constitutive_model(spec_, [&](const auto& model) {
+    if (actuated_) return f(Actuated<std::decay_t<decltype(model)>>{model, actuation_});
+    return f(model);
+  });
+}
+
 void Solid::compute_stress() {
   if (spec_.mu_s <= 0.0) return;
   // one dispatch on the constitutive law per call: the kernels are templates on the model
-  with_constitutive_model(spec_, [&](const auto& model) { compute_model_stress(model); });
+  with_model([&](const auto& model) { compute_model_stress(model); });
 }
 
 double Solid::blend_stress_into(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& fy) const {
   if (spec_.mu_s <= 0.0) return 0.0;
-  return with_constitutive_model(spec_, [&](const auto& model) {
+  return with_model([&](const auto& model) {
     return blend_model_stress(model, sxx, sxy, syy, fx, fy);
   });
 }

@@ -96,6 +96,10 @@ class Solid {
   /// sums with the same bits for any number of threads). Returns the elastic energy.
   double blend_stress_into(Field& sxx, Field& sxy, Field& syy, Field& fx, Field& fy) const;
 
+  /// The actuation map A of the next stress evaluations (kernels/constitutive_actuation.hpp;
+  /// the identity unless the scene actuates the solid).
+  void set_actuation(const Affine2& a) { actuation_ = a; actuated_ = true; }
+
   /// Sets the initial velocity inside the solid (rigid motion) blended with (1 - H).
   void impose_initial_velocity(Field& u, Field& v) const;
 
@@ -165,6 +169,12 @@ class Solid {
   std::unique_ptr<Extrapolator> extrapolator_;  ///< solids.extrapolation, owns its workspace
   ExtrapolationCounters counters_;
   long rewindows_ = 0;
+  /// the constitutive model of spec_, wrapped in Actuated when set_actuation was called:
+  /// f(model), the one dispatch of compute_stress and blend_stress_into
+  template <class F>
+  decltype(auto) with_model(F&& f) const;
+  Affine2 actuation_;
+  bool actuated_ = false;
   double max_wave_modulus_ = 0.0;  ///< largest tangent shear modulus in the solid at the last stress evaluation (0: none yet)
 };
 
