@@ -148,12 +148,16 @@ Transfer1D build_transfer(const std::vector<double>& cf, const std::vector<doubl
     if (d < 0) {
       if (I > 0) { nb = I - 1; cn = cc[I - 1]; }
       else switch (lo) {
+        case FaceKind::Inflow:   // open sides reach the solvers as walls (Sides::pressure())
+        case FaceKind::Outflow:
         case FaceKind::Wall: continue;  // Neumann reflection -> constant extrapolation
         case FaceKind::Periodic: nb = nc - 1; cn = cc[nc - 1] - length; break;
       }
     } else {
       if (I < nc - 1) { nb = I + 1; cn = cc[I + 1]; }
       else switch (hi) {
+        case FaceKind::Inflow:   // open sides reach the solvers as walls (Sides::pressure())
+        case FaceKind::Outflow:
         case FaceKind::Wall: continue;
         case FaceKind::Periodic: nb = 0; cn = cc[0] + length; break;
       }
@@ -245,6 +249,8 @@ namespace {
 /// The column (row) whose value the first ghost column (row) beyond a side copies.
 inline int ghost_source(FaceKind k, int adjacent, int wrapped) {
   switch (k) {
+    case FaceKind::Inflow:   // open sides reach the solvers as walls (Sides::pressure())
+    case FaceKind::Outflow:
     case FaceKind::Wall: return adjacent;  // any finite value: it meets T = 0
     case FaceKind::Periodic: return wrapped;
   }

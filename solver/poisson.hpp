@@ -25,6 +25,10 @@ struct PoissonOperator {
   Sides sides;  ///< walls on all four sides by default
   const Field* beta_x = nullptr;  ///< (nx+1) x ny
   const Field* beta_y = nullptr;  ///< nx x (ny+1)
+  /// Optional cell sink c >= 0 (nx x ny, may be nullptr): the problem becomes
+  ///   (1/dx^2) sum_f beta_f (x_nb - x_P) - c_P x_P = rhs_P.
+  /// With any c_P > 0 the problem is non-singular: no mean is removed from rhs or x.
+  const Field* sink = nullptr;
 };
 
 /// Pressure solver: geometric multigrid, plain CG, or multigrid-preconditioned CG.

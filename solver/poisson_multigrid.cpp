@@ -61,6 +61,8 @@ void coarsen_operator(const MultigridHierarchy::Level& F, MultigridHierarchy::Le
     for (int I = 0; I <= C.nx; ++I) {
       if (I == 0 || I == C.nx) {
         switch (C.sides[I == 0 ? Left : Right]) {
+          case FaceKind::Inflow:   // open sides reach the solvers as walls (Sides::pressure())
+          case FaceKind::Outflow:
           case FaceKind::Wall: C.tx(I, J) = 0.0; continue;
           case FaceKind::Periodic: break;  // the wrap face: rediscretised like an interior one
         }
@@ -80,6 +82,8 @@ void coarsen_operator(const MultigridHierarchy::Level& F, MultigridHierarchy::Le
   parallel_rows(0, C.ny + 1, C.nx, [&](int J) {
     if (J == 0 || J == C.ny) {
       switch (C.sides[J == 0 ? Bottom : Top]) {
+        case FaceKind::Inflow:   // open sides reach the solvers as walls (Sides::pressure())
+        case FaceKind::Outflow:
         case FaceKind::Wall:
           for (int I = 0; I < C.nx; ++I) C.ty(I, J) = 0.0;
           return;
@@ -121,10 +125,14 @@ void build_fine_operator(const PoissonOperator& op, Field& tx, Field& ty, Field&
   parallel_rows(0, ny, nx, [&](int j) {
     for (int i = 1; i < nx; ++i) tx(i, j) = bx(i, j);
     switch (sides[Left]) {
+      case FaceKind::Inflow:   // open sides reach the solvers as walls (Sides::pressure())
+      case FaceKind::Outflow:
       case FaceKind::Wall: tx(0, j) = 0.0; break;
       case FaceKind::Periodic: tx(0, j) = 0.5 * (bx(0, j) + bx(nx, j)); break;
     }
     switch (sides[Right]) {
+      case FaceKind::Inflow:   // open sides reach the solvers as walls (Sides::pressure())
+      case FaceKind::Outflow:
       case FaceKind::Wall: tx(nx, j) = 0.0; break;
       case FaceKind::Periodic: tx(nx, j) = tx(0, j); break;
     }
@@ -133,6 +141,8 @@ void build_fine_operator(const PoissonOperator& op, Field& tx, Field& ty, Field&
     for (int i = 0; i < nx; ++i) ty(i, j) = by(i, j);
   });
   switch (sides[Bottom]) {
+    case FaceKind::Inflow:   // open sides reach the solvers as walls (Sides::pressure())
+    case FaceKind::Outflow:
     case FaceKind::Wall:
       for (int i = 0; i < nx; ++i) ty(i, 0) = 0.0;
       break;
@@ -141,6 +151,8 @@ void build_fine_operator(const PoissonOperator& op, Field& tx, Field& ty, Field&
       break;
   }
   switch (sides[Top]) {
+    case FaceKind::Inflow:   // open sides reach the solvers as walls (Sides::pressure())
+    case FaceKind::Outflow:
     case FaceKind::Wall:
       for (int i = 0; i < nx; ++i) ty(i, ny) = 0.0;
       break;
