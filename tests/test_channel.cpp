@@ -20,6 +20,7 @@
 #include "solver/run.hpp"
 #include "solver/scene.hpp"
 #include "solver/simulation.hpp"
+#include "tests/fixtures/scene_text.hpp"
 #include "tests/test_helpers.hpp"
 
 using namespace refmap;
@@ -102,4 +103,49 @@ TEST(Channel, UniformInflowDevelopsTheParabolaDownstream) {
   // the developed profile's discretisation error (case 1) plus what is left of the
   // development: 3 % of the peak
   EXPECT_LT(r.profile_err, 0.03);
+}
+
+namespace {
+
+/// The scene error message of a unit box with the given [boundary] lines ("" if it loads).
+std::string boundary_error(const std::string& boundary) {
+  try {
+    load_scene_string(box_scene(16, boundary), "channel_test.toml");
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST(Channel, SceneErrorsForBadInflowAndOutflow) {
+  const std::string walls_tb = "bottom = \"no_slip\"\ntop = \"no_slip\"\n";
+  // a valid channel loads and keeps its expressions
+  {
+    const Config c = load_scene_string(
+        box_scene(16, "left = { type = \"inflow\", u = \"4*y*(1-y)*min(t, 1)\" }\nright = \"outflow\"\n" + walls_tb),
+        "ok.toml");
+    EXPECT_EQ(c.bc[Left].type, BcType::Inflow);
+    EXPECT_EQ(c.bc[Right].type, BcType::Outflow);
+    EXPECT_DOUBLE_EQ(c.bc[Left].inflow_u.eval(0.0, 0.5, 2.0), 1.0);
+    EXPECT_DOUBLE_EQ(c.bc[Left].inflow_v.eval(0.0, 0.5, 2.0), 0.0);
+  }
+  // outflow only (two open sides, no inflow) is allowed
+  EXPECT_EQ(boundary_error("left = \"outflow\"\nright = \"outflow\"\n" + walls_tb), "");
+  EXPECT_TRUE(contains(boundary_error("left = { type = \"inflow\", u = 1 }\nright = \"no_slip\"\n" + walls_tb),
+                       "needs an \"outflow\" side"));
+  EXPECT_TRUE(contains(boundary_error("left = \"inflow\"\nright = \"outflow\"\n" + walls_tb), "needs its velocity"));
+  EXPECT_TRUE(contains(boundary_error("left = { type = \"inflow\", v = 1 }\nright = \"outflow\"\n" + walls_tb),
+                       "needs its normal velocity `u`"));
+  EXPECT_TRUE(contains(boundary_error("left = { type = \"inflow\", u = \"y +\" }\nright = \"outflow\"\n" + walls_tb),
+                       "invalid expression"));
+  EXPECT_TRUE(contains(boundary_error("left = { type = \"inflow\", u = \"1/(y-y)\" }\nright = \"outflow\"\n" + walls_tb),
+                       "must be finite along the whole side"));
+  EXPECT_TRUE(contains(boundary_error("left = { type = \"no_slip\", u = 1 }\nright = \"outflow\"\n" + walls_tb),
+                       "only an inflow takes u and v"));
+  EXPECT_TRUE(contains(boundary_error("left = \"periodic\"\nright = \"outflow\"\n" + walls_tb),
+                       "must be \"periodic\""));
 }
