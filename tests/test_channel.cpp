@@ -47,7 +47,8 @@ double column_error(const Simulation& sim, const Grid& g, double x) {
 }
 
 ChannelResult run_channel(int ny, const std::vector<std::string>& extra_sets, double x_profile) {
-  std::vector<std::string> sets = {"grid.ny=" + std::to_string(ny)};
+  // nx = 2 ny: the scene's 2 H long channel (the start-up case overrides lx and nx)
+  std::vector<std::string> sets = {"grid.ny=" + std::to_string(ny), "grid.nx=" + std::to_string(2 * ny)};
   for (const auto& s : extra_sets) sets.push_back(s);
   Config cfg = load_scene(scene_path("channel_poiseuille.toml"), sets);
   cfg.write_vtk = false;
@@ -100,9 +101,9 @@ TEST(Channel, UniformInflowDevelopsTheParabolaDownstream) {
   const ChannelResult r = run_channel(16, {"domain.lx=4.0", "grid.nx=64", "boundary.left={ type = \"inflow\", u = 1 }",
                                            "initial.velocity=\"uniform\"", "initial.u=0"},
                                       3.5);
-  // the developed profile's discretisation error (case 1) plus what is left of the
-  // development: 3 % of the peak
-  EXPECT_LT(r.profile_err, 0.03);
+  // the developed profile's discretisation error on this grid (case 1: 3.2e-3 of the peak
+  // at 16 cells across) plus what is left of the development: 1 % of the peak
+  EXPECT_LT(r.profile_err, 0.01);
 }
 
 namespace {
