@@ -71,6 +71,14 @@ inline void residual_row(const Stencil& s, CView x, CView f, int j, double* __re
   const double* ts = &s.ty(0, j);
   const double* tn = &s.ty(0, j + 1);
   const int nx = s.nx;
+  if (s.c.p) {  // sink: (L x)_P gains -c_P x_P
+    const double* cr = &s.c(0, j);
+#pragma omp simd
+    for (int i = 0; i < nx; ++i)
+      out[i] = fr[i] - stencil5_apply(t[i], t[i + 1], ts[i], tn[i], xr[i - 1], xr[i + 1], xs[i], xn[i], xr[i]) +
+               cr[i] * xr[i];
+    return;
+  }
 #pragma omp simd
   for (int i = 0; i < nx; ++i)
     out[i] = fr[i] - stencil5_apply(t[i], t[i + 1], ts[i], tn[i], xr[i - 1], xr[i + 1], xs[i], xn[i], xr[i]);
@@ -148,12 +156,16 @@ Transfer1D build_transfer(const std::vector<double>& cf, const std::vector<doubl
     if (d < 0) {
       if (I > 0) { nb = I - 1; cn = cc[I - 1]; }
       else switch (lo) {
+        case FaceKind::Inflow:   // open sides reach the solvers as walls (Sides::pressure())
+        case FaceKind::Outflow:
         case FaceKind::Wall: continue;  // Neumann reflection -> constant extrapolation
         case FaceKind::Periodic: nb = nc - 1; cn = cc[nc - 1] - length; break;
       }
     } else {
       if (I < nc - 1) { nb = I + 1; cn = cc[I + 1]; }
       else switch (hi) {
+        case FaceKind::Inflow:   // open sides reach the solvers as walls (Sides::pressure())
+        case FaceKind::Outflow:
         case FaceKind::Wall: continue;
         case FaceKind::Periodic: nb = 0; cn = cc[0] + length; break;
       }
@@ -245,6 +257,8 @@ namespace {
 /// The column (row) whose value the first ghost column (row) beyond a side copies.
 inline int ghost_source(FaceKind k, int adjacent, int wrapped) {
   switch (k) {
+    case FaceKind::Inflow:   // open sides reach the solvers as walls (Sides::pressure())
+    case FaceKind::Outflow:
     case FaceKind::Wall: return adjacent;  // any finite value: it meets T = 0
     case FaceKind::Periodic: return wrapped;
   }
@@ -280,6 +294,17 @@ inline double residual_row_norm2(const Stencil& s, CView x, CView f, int j) {
   const double* tn = &s.ty(0, j + 1);
   const int nx = s.nx;
   double a = 0.0;
+  if (s.c.p) {  // sink: (L x)_P gains -c_P x_P
+    const double* cr = &s.c(0, j);
+#pragma omp simd reduction(+ : a)
+    for (int i = 0; i < nx; ++i) {
+      const double v =
+          fr[i] - stencil5_apply(t[i], t[i + 1], ts[i], tn[i], xr[i - 1], xr[i + 1], xs[i], xn[i], xr[i]) +
+          cr[i] * xr[i];
+      a += v * v;
+    }
+    return a;
+  }
 #pragma omp simd reduction(+ : a)
   for (int i = 0; i < nx; ++i) {
     const double v =
@@ -730,6 +755,18 @@ double apply_dot(const Stencil& s, CView p, View q) {
     const double* tn = &s.ty(0, j + 1);
     double* __restrict qr = &q(0, j);
     double v = 0.0;
+    if (s.c.p) {  // sink: (L p)_P gains -c_P p_P
+      const double* cr = &s.c(0, j);
+#pragma omp simd reduction(+ : v)
+      for (int i = 0; i < nx; ++i) {
+        const double c = pr[i];
+        const double l =
+            stencil5_apply(t[i], t[i + 1], ts[i], tn[i], pr[i - 1], pr[i + 1], ps[i], pn[i], c) - cr[i] * c;
+        qr[i] = l;
+        v += c * l;
+      }
+      return v;
+    }
 #pragma omp simd reduction(+ : v)
     for (int i = 0; i < nx; ++i) {
       const double c = pr[i];

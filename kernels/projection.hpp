@@ -3,8 +3,9 @@
 // grid. Face quantities: x faces (nx+1) x ny (face i = left face of cell i), y faces
 // nx x (ny+1). A boundary face is treated by the kind of its side
 // (kernels/boundary_kind.hpp): a wall (normal velocity 0, beta 0, no pressure-gradient/
-// body-force imbalance) or periodic (computed from the wrapped ghost cells; face n repeats
-// face 0).
+// body-force imbalance), periodic (computed from the wrapped ghost cells; face n repeats
+// face 0), inflow (velocity from the ghost fill, beta 0, G_f extrapolated from the first
+// interior face) or outflow (p = 0 on the face, beta = 1/rho_P, velocity from the ghost).
 #include "kernels/boundary_kind.hpp"
 #include "core/field.hpp"
 

@@ -79,12 +79,7 @@ void Simulation::load_state(CheckpointReader& r) {
   solid_diag_step_ = -1;
   ke_step_ = -1;
   // the pressure solver's operator of the restored density (as after the step that wrote it)
-  PoissonOperator op;
-  op.grid = cfg_.grid;
-  op.sides = face_sides(cfg_.bc);
-  op.beta_x = &beta_x_;
-  op.beta_y = &beta_y_;
-  poisson_->setup(op);
+  poisson_->setup(poisson_operator());
 }
 
 void Solid::save_state(CheckpointWriter& w, const std::string& tag) const {

@@ -12,12 +12,13 @@
 #include "kernels/reference_map.hpp"
 #include "kernels/constitutive.hpp"
 #include "core/grid.hpp"
+#include "solver/expression.hpp"
 #include "solver/poisson.hpp"
 #include "solver/shape.hpp"
 
 namespace refmap {
 
-enum class BcType { NoSlip, MovingWall, FreeSlip, Periodic };
+enum class BcType { NoSlip, MovingWall, FreeSlip, Periodic, Inflow, Outflow };
 
 // Physics options are enums from the moment the scene is loaded; their scene-file names
 // live in one place, solver/option_names.hpp (to_string / parse_option).
@@ -38,10 +39,13 @@ enum class StressForm { Cell, Face };
 
 /// Boundary condition of one side. `velocity` is the tangential wall speed of a moving
 /// wall (u on bottom/top, v on left/right); the normal velocity at a wall is always 0.
-/// Periodic must be set on both sides of a direction.
+/// Periodic must be set on both sides of a direction. Inflow: the velocity (inflow_u,
+/// inflow_v) on the side is prescribed as expressions of x, y, t (docs/boundaries.md);
+/// Outflow: p = 0 and zero normal derivative of the velocity.
 struct SideBc {
   BcType type = BcType::NoSlip;
   double velocity = 0.0;
+  Expression inflow_u, inflow_v;  ///< Inflow only: u(x, y, t), v(x, y, t) on the side
   /// Optional time dependence of a moving wall: speed = velocity * sin(omega t + phase)
   /// when `oscillating` is true (the elastic-layer Couette flow needs it).
   bool oscillating = false;

@@ -32,6 +32,9 @@ Contact::Contact(const Config& cfg, double velocity_scale) : g_(cfg.grid) {
   for (int s = 0; s < 4; ++s) {
     switch (sides_.kind[s]) {
       case FaceKind::Wall: wall_[s] = o.walls; break;
+      // an open side repels nothing: a solid may be carried in or out through it
+      case FaceKind::Inflow:
+      case FaceKind::Outflow:
       case FaceKind::Periodic: wall_[s] = false; break;
     }
   }
@@ -111,6 +114,8 @@ void Contact::fill_layer(const Solid& a, Dist&& dist, const std::array<int, 4>& 
         if (seam) {
           switch (sides_[dir == 0 ? Left : Bottom]) {
             case FaceKind::Wall: continue;  // no normal flux through a wall face
+            case FaceKind::Inflow:          // prescribed face velocity: no force on it
+            case FaceKind::Outflow: continue;  // no force on an open face
             case FaceKind::Periodic: break;
           }
         }

@@ -15,7 +15,9 @@ std::span<const OptionName<BcType>> option_names(BcType) {
   static const OptionName<BcType> n[] = {{BcType::NoSlip, "no_slip"},
                                          {BcType::FreeSlip, "free_slip"},
                                          {BcType::Periodic, "periodic"},
-                                         {BcType::MovingWall, "moving_wall"}};
+                                         {BcType::MovingWall, "moving_wall"},
+                                         {BcType::Inflow, "inflow"},
+                                         {BcType::Outflow, "outflow"}};
   return span_of(n);
 }
 

@@ -609,12 +609,18 @@ SideBc parse_side(const Ctx& ctx, const Table& b, const char* side) {
     if (const auto t = parse_option<BcType>(s)) bc.type = *t;
     else
       failer("unknown boundary condition " + dq(s) + suggestion(s, kinds, true) +
-             " (expected \"no_slip\", \"free_slip\", \"periodic\" or { type = \"moving_wall\", velocity = ... })");
+             " (expected \"no_slip\", \"free_slip\", \"periodic\", \"outflow\", { type = \"moving_wall\", "
+             "velocity = ... } or { type = \"inflow\", u = ..., v = ... })");
   };
   if (auto s = n->as_string()) {
     set_kind(s->get(), [&](const std::string& w) { b.fail(side, w); });
     if (bc.type == BcType::MovingWall)
       b.fail(side, "a moving wall needs a velocity: write { type = \"moving_wall\", velocity = 1.0 }");
+    if (bc.type == BcType::Inflow)
+      b.fail(side, std::string("an inflow needs its velocity: write { type = \"inflow\", ") +
+                       (std::string(side) == "left" || std::string(side) == "right" ? "u = \"...\" }"
+                                                                                    : "v = \"...\" }") +
+                       " with an expression of x, y and t");
     return bc;
   }
   const toml::table* t = n->as_table();
@@ -624,6 +630,38 @@ SideBc parse_side(const Ctx& ctx, const Table& b, const char* side) {
   Table s(ctx, *t, b.full(side), "boundary.side");
   s.allow();
   set_kind(s.string("type"), [&](const std::string& w) { s.fail("type", w); });
+  if (bc.type != BcType::Inflow)
+    for (const char* k : {"u", "v"})
+      if (s.has(k)) s.fail(k, "only an inflow takes u and v (the velocity on the side)");
+  if (bc.type == BcType::Inflow) {
+    for (const char* k : {"velocity", "omega", "phase"})
+      if (s.has(k)) s.fail(k, "only a moving_wall takes a velocity, omega or phase (an inflow takes u and v)");
+    const bool xside = std::string(side) == "left" || std::string(side) == "right";
+    const char* normal = xside ? "u" : "v";
+    if (!s.has(normal))
+      s.fail("type", std::string("an inflow on the ") + side + " side needs its normal velocity `" + normal +
+                         "` (an expression of x, y, t)");
+    // a plain number is accepted as an expression too (u = 1)
+    for (const char* k : {"u", "v"}) {
+      std::string text = "0";
+      if (const toml::node* n = s.node(k)) {
+        if (n->as_integer()) text = std::to_string(n->as_integer()->get());
+        else if (n->as_floating_point()) {
+          char buf[40];
+          std::snprintf(buf, sizeof buf, "%.17g", n->as_floating_point()->get());
+          text = buf;
+        } else {
+          text = s.string(k);
+        }
+      }
+      try {
+        (std::string(k) == "u" ? bc.inflow_u : bc.inflow_v) = Expression(text);
+      } catch (const std::invalid_argument& ex) {
+        s.fail(k, "invalid expression " + dq(text) + ": " + ex.what());
+      }
+    }
+    return bc;
+  }
   if (bc.type != BcType::MovingWall) {
     for (const char* k : {"velocity", "omega", "phase"})
       if (s.has(k)) s.fail(k, "only a moving_wall takes a velocity, omega or phase");
@@ -653,6 +691,18 @@ void parse_boundary(const Ctx& ctx, const Table& top, Config& cfg) {
                              " is: periodic must be set on both sides of a direction");
     }
   }
+  // an inflow without an outflow: the pressure Poisson problem is singular and solvable
+  // only if the net inflow vanishes at every instant, which refmap does not check; ask for
+  // an outflow side instead (docs/boundaries.md)
+  int inflow = -1;
+  bool outflow = false;
+  for (int s = 0; s < 4; ++s) {
+    if (cfg.bc[s].type == BcType::Inflow && inflow < 0) inflow = s;
+    outflow = outflow || cfg.bc[s].type == BcType::Outflow;
+  }
+  if (inflow >= 0 && !outflow)
+    b.fail(names[inflow], "an inflow side needs an \"outflow\" side for the fluid to leave through "
+                          "(with walls and periodic sides only, the inflow could not be balanced)");
 }
 
 /// The text of an expression key; a plain number is accepted as an expression too
@@ -1170,6 +1220,25 @@ void check_start_state(const Ctx& ctx, const Table& top, const Config& cfg) {
           }
     }
   }
+  // 1b. an inflow profile must be finite along its side (ghost rows included) at the start
+  for (int side = 0; side < 4; ++side) {
+    const SideBc& bc = cfg.bc[std::size_t(side)];
+    if (bc.type != BcType::Inflow) continue;
+    const char* names[4] = {"left", "right", "bottom", "top"};
+    const bool xside = side == Left || side == Right;
+    const double xf = side == Left ? g.x0 : g.x0 + g.lx(), yf = side == Bottom ? g.y0 : g.y0 + g.ly();
+    const int n = xside ? g.ny : g.nx;
+    for (int k = -Grid::ng; k < n + Grid::ng; ++k)
+      for (const Expression* e : {&bc.inflow_u, &bc.inflow_v}) {
+        const double x = xside ? xf : g.xc(k), y = xside ? g.yc(k) : yf;
+        const double v = e->eval(x, y, cfg.t_start);
+        if (!std::isfinite(v))
+          ctx.fail(std::string("boundary.") + names[side] + (e == &bc.inflow_u ? ".u" : ".v"),
+                   top.table("boundary", true)->get(names[side]),
+                   "evaluates to " + fmt_num(v) + " at x = " + fmt_num(x) + ", y = " + fmt_num(y) + ", t = " +
+                       fmt_num(cfg.t_start) + " (it must be finite along the whole side)");
+      }
+  }
   if (cfg.solids.empty()) return;
   // 2. the extrapolated band must fit in the grid
   if (top.has("solids")) {
@@ -1200,6 +1269,10 @@ void check_start_state(const Ctx& ctx, const Table& top, const Config& cfg) {
     for (const Axis& a : {Axis{bb.xmin, bb.xmax, g.x0, x1, Left, Right, "x"},
                           Axis{bb.ymin, bb.ymax, g.y0, y1, Bottom, Top, "y"}}) {
       switch (sides[a.s0]) {
+        // a solid starts inside an inflow or outflow side like inside a wall (it may leave
+        // through an outflow later: docs/boundaries.md)
+        case FaceKind::Inflow:
+        case FaceKind::Outflow:
         case FaceKind::Wall:
           if (a.lo < a.d0 || a.hi > a.d1)
             fail(std::string("does not fit inside the walls: it spans ") + a.name + " = [" + fmt_num(a.lo) + ", " +

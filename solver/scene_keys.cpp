@@ -145,6 +145,15 @@ std::vector<KeyDef> build_keys() {
            "type", {"moving_wall"}),
       only(num("boundary.side", "phase", db.phase, {}, "phase of the oscillating wall (needs `omega`)"), "type",
            {"moving_wall"}),
+      only(shown_default(key("boundary.side", "u", KT::Expression, {}, {},
+                             "x velocity u(x, y, t) on the side (see *Expressions*); required on the left and "
+                             "right sides (the normal velocity)"),
+                         "`0`"),
+           "type", {"inflow"}),
+      only(shown_default(key("boundary.side", "v", KT::Expression, {}, {},
+                             "y velocity v(x, y, t) on the side; required on the bottom and top sides"),
+                         "`0`"),
+           "type", {"inflow"}),
 
       choice<InitialKind>("initial", "velocity", di.kind, "initial velocity field"),
       only(num("initial", "u", di.u, {}, "constant x velocity"), "velocity", {"uniform"}),
@@ -404,7 +413,9 @@ const std::vector<TableDef>& scene_tables() {
       {"boundary", "`[boundary]`", true, false, false,
        "All four sides are required; each is a string or an inline table (see *Boundary conditions* below)."},
       {"boundary.side", "`boundary.<side>` as an inline table", false, false, true,
-       "`{ type = \"moving_wall\", velocity = U }`; the other kinds take no further keys."},
+       "`{ type = \"moving_wall\", velocity = U }` or `{ type = \"inflow\", u = \"...\", v = \"...\" }`; "
+       "the other kinds take no further keys. An inflow needs an `\"outflow\"` side (p = 0, zero normal "
+       "derivative of the velocity); see docs/boundaries.md."},
       {"initial", "`[initial]`", false, false, false,
        "A key of another kind (e.g. `u` with `velocity = \"zero\"`) is an error."},
       {"gravity", "`[gravity]`", false, false, false, ""},

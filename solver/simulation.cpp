@@ -275,18 +275,25 @@ void Simulation::initialise() {
 }
 
 void Simulation::apply_velocity_bc(Field& u, Field& v, double t) const {
-  fill_vector_ghosts(u, v, cfg_.bc, t);
+  fill_vector_ghosts(u, v, cfg_.bc, cfg_.grid, t);
 }
 
 void Simulation::build_poisson_coefficients() {
   const Grid& g = cfg_.grid;
   face_beta(rho_.view(), beta_x_.view(), beta_y_.view(), g.nx, g.ny, face_boundary(cfg_));
+  poisson_->setup(poisson_operator());
+}
+
+PoissonOperator Simulation::poisson_operator() {
   PoissonOperator op;
-  op.grid = g;
-  op.sides = face_boundary(cfg_);
+  op.grid = cfg_.grid;
+  const Sides fb = face_boundary(cfg_);
+  op.sides = fb.pressure();
   op.beta_x = &beta_x_;
   op.beta_y = &beta_y_;
-  poisson_->setup(op);
+  // an outflow side fixes the pressure's constant: the problem is no longer singular
+  if (outflow_sink(beta_x_, beta_y_, fb, cfg_.grid, sink_)) op.sink = &sink_;
+  return op;
 }
 
 double Simulation::stable_dt() const {
@@ -300,6 +307,7 @@ double Simulation::stable_dt() const {
   });
   for (const SideBc& s : cfg_.bc)
     if (s.type == BcType::MovingWall) umax = std::max(umax, std::abs(s.velocity));
+  umax = std::max(umax, max_inflow_speed(cfg_.bc, g, t_));
   double dt = cfg_.dt_max;
   if (umax > 0.0) dt = std::min(dt, cfg_.cfl * g.dx / umax);
   // viscous: the discrete operator of kernels/viscous.cpp (full stress mu (grad u +
@@ -333,11 +341,15 @@ void Simulation::add_contact_face_accel() {
   // add); a periodic direction's faces 0 and n are one face
   bool x_seam = false, y_seam = false;
   switch (sides[Left]) {
-    case FaceKind::Wall: break;
+    case FaceKind::Wall:
+    case FaceKind::Inflow:
+    case FaceKind::Outflow: break;  // no contact force on an open face (solver/contact.cpp)
     case FaceKind::Periodic: x_seam = true; break;
   }
   switch (sides[Bottom]) {
-    case FaceKind::Wall: break;
+    case FaceKind::Wall:
+    case FaceKind::Inflow:
+    case FaceKind::Outflow: break;
     case FaceKind::Periodic: y_seam = true; break;
   }
   parallel_rows(0, g.ny, g.nx, [&](int j) {
@@ -452,7 +464,7 @@ void Simulation::advect_momentum(double dt) {
   rk4_step(f, dt, [&](int stage, View kx, View ky) {
     Field& qx = stage == 1 ? mx_ : sx_;
     Field& qy = stage == 1 ? my_ : sy_;
-    fill_vector_ghosts(qx, qy, cfg_.bc, t, cfg_.rho_f);
+    fill_vector_ghosts(qx, qy, cfg_.bc, g, t, cfg_.rho_f);
     advect_rhs2(qx.view(), qy.view(), uf_.view(), vf_.view(), kx, ky, nx, ny, g.dx, scheme);
   });
   // u* = (rho u)* / rho^{n+1}

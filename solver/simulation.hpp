@@ -104,6 +104,9 @@ class Simulation {
   /// step() without the tracers and markers (which step() moves around it).
   double step_state(double dt);
   void build_poisson_coefficients();
+  /// The pressure solver's operator of the current beta (open sides as walls, the outflow
+  /// sides' Dirichlet condition as the cell sink sink_).
+  PoissonOperator poisson_operator();
   // The phases of step(), in order; each books its time under the phase of the same name
   // in the timing table.
   /// flow = "prescribed": only the solids move, in the imposed velocity field.
@@ -148,6 +151,7 @@ class Simulation {
   Field uf_, vf_;                          // face-normal velocities (exactly divergence-free)
   Field beta_x_, beta_y_;                  // 1/rho on faces for the Poisson problem
   Field dp_, rhs_;                         // pressure correction and Poisson right-hand side
+  Field sink_;                             // outflow sides' Poisson sink (empty without one)
   // RK-4 work arrays (momentum rho u, rho v)
   Field mx_, my_, kx_, ky_, sx_, sy_, fx_, fy_, k2x_, k2y_;
   Field gxf_, gyf_;                        // face accelerations G_f of eqs. (5.3), (5.7)
