@@ -18,6 +18,10 @@
 //                             1000; plain CG only up to N = 512 (its iteration count grows
 //                             like N, so 1024^2 and 2048^2 would dominate the run time).
 //                             The time is the whole solve (setup of the hierarchy excluded).
+//   PoissonContrast/<m>/<co>/N/R  the same solve for m in {V, F, mgpcg} with coarse
+//                             operator co in {average, harmonic} (solver.coarse_operator),
+//                             N = 256 ... 2048 ("harmonic" only up to 512), R = 1, 1000
+//                             (bench/run_poisson_contrast.sh -> results/poisson_contrast.csv)
 //
 // Kernel counters (bench/bench_counters.hpp): cells_per_s = finest cells processed per
 // second (per sweep / cycle); GB/s = bytes_per_cell * cells_per_s; GFlop/s =
@@ -207,7 +211,8 @@ struct SolveCache {
   std::unique_ptr<PoissonSolver> solver;
 };
 
-SolveCache& solve_case(const std::string& method, int n, double ratio) {
+SolveCache& solve_case(const std::string& method, int n, double ratio,
+                       const std::string& coarse = "") {
   static SolveCache c;
   if (!c.p || c.n != n || c.ratio != ratio) {
     c.solver.reset();
@@ -217,7 +222,7 @@ SolveCache& solve_case(const std::string& method, int n, double ratio) {
     c.ratio = ratio;
     c.method.clear();
   }
-  if (!c.solver || c.method != method) {
+  if (!c.solver || c.method != method + "/" + coarse) {
     PoissonOptions o;
     o.tol = 1e-8;
     o.max_iter = 100000;
@@ -231,17 +236,22 @@ SolveCache& solve_case(const std::string& method, int n, double ratio) {
       throw std::invalid_argument("bench_poisson: unknown method " + method);
     }
     c.solver.reset();
+    if (!coarse.empty()) {
+      const auto co = parse_option<MgCoarseOperator>(coarse);
+      if (!co) throw std::invalid_argument("bench_poisson: unknown coarse operator " + coarse);
+      o.coarse_operator = *co;
+    }
     c.solver = make_poisson_solver(o);
     c.solver->setup(c.p->op());
-    c.method = method;
+    c.method = method + "/" + coarse;
   }
   return c;
 }
 
-void BM_Solve(benchmark::State& state, std::string method) {
+void BM_Solve(benchmark::State& state, std::string method, std::string coarse = "") {
   const int n = int(state.range(0));
   const double ratio = double(state.range(1));
-  SolveCache& c = solve_case(method, n, ratio);
+  SolveCache& c = solve_case(method, n, ratio, coarse);
   Field x(n, n);
   SolveStats st;
   for (auto _ : state) {
@@ -290,11 +300,26 @@ const int registered = [] {
       for (const char* m : {"V", "F", "mgpcg", "cg"}) {
         if (std::string(m) == "cg" && n > kCgMaxN) continue;
         benchmark::RegisterBenchmark(("PoissonSolve/" + std::string(m)).c_str(), BM_Solve,
-                                     std::string(m))
+                                     std::string(m), std::string())
             ->Args({n, ratio})
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime();
       }
+  // the density-contrast study (bench/run_poisson_contrast.sh): V-cycles and MGPCG with
+  // each coarse operator (PoissonOptions::coarse_operator), ratio 1 and 1000
+  for (int n : {256, 512, 1024, 2048})
+    for (int ratio : {1, 1000})
+      for (const char* m : {"V", "F", "mgpcg"})
+        for (const char* co : {"average", "harmonic"}) {
+          // "harmonic" needs hundreds of cycles at ratio 1000 from 1024^2 on: small grids only
+          if (std::string(co) == "harmonic" && n > 512) continue;
+          benchmark::RegisterBenchmark(
+              ("PoissonContrast/" + std::string(m) + "/" + co).c_str(), BM_Solve, std::string(m),
+              std::string(co))
+              ->Args({n, ratio})
+              ->Unit(benchmark::kMillisecond)
+              ->UseRealTime();
+        }
   return 0;
 }();
 

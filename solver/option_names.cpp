@@ -91,6 +91,12 @@ std::span<const OptionName<MgSmoother>> option_names(MgSmoother) {
   return span_of(n);
 }
 
+std::span<const OptionName<MgCoarseOperator>> option_names(MgCoarseOperator) {
+  static const OptionName<MgCoarseOperator> n[] = {{MgCoarseOperator::Average, "average"},
+                                                   {MgCoarseOperator::Harmonic, "harmonic"}};
+  return span_of(n);
+}
+
 std::span<const OptionName<ShapeKind>> option_names(ShapeKind) {
   static const OptionName<ShapeKind> n[] = {
       {ShapeKind::Circle, "circle"},

@@ -40,6 +40,7 @@ std::span<const OptionName<XiFlux>> option_names(XiFlux);
 std::span<const OptionName<PoissonMethod>> option_names(PoissonMethod);
 std::span<const OptionName<MgCycle>> option_names(MgCycle);
 std::span<const OptionName<MgSmoother>> option_names(MgSmoother);
+std::span<const OptionName<MgCoarseOperator>> option_names(MgCoarseOperator);
 std::span<const OptionName<ShapeKind>> option_names(ShapeKind);
 
 /// Canonical name of an option value ("?" for a value outside the list).

@@ -48,11 +48,17 @@ enum class PoissonMethod { Multigrid, Cg, Mgpcg };
 enum class MgCycle { V, F };
 /// Red-black Gauss-Seidel (over-relaxed by rbgs_omega) or weighted Jacobi.
 enum class MgSmoother { Rbgs, Jacobi };
+/// Multigrid coarse-face coefficients (solver/poisson_multigrid.hpp): the restriction-
+/// weighted mean of the fine beta ("average"), or the fine faces in series normal to the
+/// coarse face and the fine strips in parallel ("harmonic": keeps the flux across a density
+/// jump).
+enum class MgCoarseOperator { Average, Harmonic };
 
 struct PoissonOptions {
   PoissonMethod method = PoissonMethod::Multigrid;
   MgCycle cycle = MgCycle::V;
   MgSmoother smoother = MgSmoother::Rbgs;
+  MgCoarseOperator coarse_operator = MgCoarseOperator::Average;
   int pre_smooth = 2, post_smooth = 2;
   double tol = 1e-10;                ///< relative residual ||r||_2 / ||rhs||_2
   int max_iter = 200;

@@ -9,6 +9,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -105,6 +106,103 @@ void coarsen_operator(const MultigridHierarchy::Level& F, MultigridHierarchy::Le
       double s = 0.0;
       for (int k = 0; k < K; ++k) s += F.trx.rw[I * K + k] * F.ty(F.trx.ri[I * K + k], e);
       C.ty(I, J) = s * tang_x[I] * normal;
+    }
+  });
+}
+
+/// Flux-preserving coarse coefficients ("harmonic"): the coarse face between coarse cells
+/// A and B carries the conductance of the fine strips in parallel, each strip (one fine row
+/// across an x-face, one fine column across a y-face) being the fine faces in series from
+/// the centre of A to the centre of B. Along a strip the fine operator's resistance
+/// between consecutive fine centres k-1, k is 1/T_f(k); the coarse path covers a fraction
+/// of each such interval (1/2, 1, 1/2 on uniform levels), so
+///   T_c = sum_strips 1 / sum_k (overlap_k / dist_k) / T_f(k).
+/// For constant beta this is the coarse 5-point operator exactly; across a density jump it
+/// keeps the flux a fine solution would carry (the normal direction averages harmonically,
+/// the tangential one arithmetically), where the restriction-weighted mean of beta
+/// ("average") overstates the conductance into a heavy (low-beta) region.
+struct Strip1D {
+  const std::vector<double>* c;  ///< fine centres
+  double length;
+  bool periodic;
+  int n() const { return int(c->size()); }
+  /// Centre of fine cell m for any m (periodic: shifted copies).
+  double centre(int m) const {
+    const int nf = n();
+    if (!periodic) return (*c)[m];
+    const int q = (m >= 0) ? m / nf : -((-m + nf - 1) / nf);
+    return (*c)[m - q * nf] + q * length;
+  }
+  /// Fine face index (0..nf) of the face between extended cells k-1 and k.
+  int face(int k) const {
+    const int nf = n();
+    int e = ((k % nf) + nf) % nf;
+    return e;  // periodic face 0 == face nf (same T)
+  }
+};
+
+/// Resistance of the path [a, b] along a strip; T(e) gives the fine T of face e. The path
+/// crosses the intervals between extended fine centres k-1 and k for k in [k0, k1].
+template <class TF>
+double strip_resistance(const Strip1D& s, double a, double b, int k0, int k1, TF&& T) {
+  double r = 0.0;
+  for (int k = k0; k <= k1; ++k) {
+    if (!s.periodic && (k < 1 || k > s.n() - 1)) continue;
+    const double lo = s.centre(k - 1), hi = s.centre(k);
+    const double o = std::min(b, hi) - std::max(a, lo);
+    if (o <= 0) continue;
+    const double t = T(s.face(k));
+    if (!(t > 0)) return std::numeric_limits<double>::infinity();
+    r += (o / (hi - lo)) / t;
+  }
+  return r;
+}
+
+void coarsen_operator_harmonic(const MultigridHierarchy::Level& F, MultigridHierarchy::Level& C) {
+  const Strip1D sx{&F.cx, F.lx, C.sides.periodic_x()};
+  const Strip1D sy{&F.cy, F.ly, C.sides.periodic_y()};
+  // fine rows (columns) a coarse row (column) covers: 2J, 2J+1 (and 2J+2 for the last of an odd count)
+  auto span = [](int J, int nc, int nf, int& lo, int& hi) {
+    lo = 2 * J;
+    hi = (J == nc - 1) ? nf : 2 * J + 2;
+  };
+  parallel_rows(0, C.ny, C.nx, [&](int J) {
+    int j0, j1;
+    span(J, C.ny, F.ny, j0, j1);
+    for (int I = 0; I <= C.nx; ++I) {
+      if (I == 0 || I == C.nx) {
+        if (C.sides[I == 0 ? Left : Right] == FaceKind::Wall) { C.tx(I, J) = 0.0; continue; }
+      }
+      const double a = (I == 0 || I == C.nx) ? C.cx[C.nx - 1] - C.lx : C.cx[I - 1];
+      const double b = (I == 0 || I == C.nx) ? C.cx[0] : C.cx[I];
+      const int e = (I == C.nx) ? 0 : 2 * I;  // fine face at the coarse face
+      double s = 0.0;
+      for (int j = j0; j < j1; ++j) {
+        const double r = strip_resistance(sx, a, b, e - 3, e + 3, [&](int f) { return F.tx(f, j); });
+        if (r > 0 && std::isfinite(r)) s += 1.0 / r;
+      }
+      C.tx(I, J) = s;
+    }
+  });
+  parallel_rows(0, C.ny + 1, C.nx, [&](int J) {
+    if (J == 0 || J == C.ny) {
+      if (C.sides[J == 0 ? Bottom : Top] == FaceKind::Wall) {
+        for (int I = 0; I < C.nx; ++I) C.ty(I, J) = 0.0;
+        return;
+      }
+    }
+    const double a = (J == 0 || J == C.ny) ? C.cy[C.ny - 1] - C.ly : C.cy[J - 1];
+    const double b = (J == 0 || J == C.ny) ? C.cy[0] : C.cy[J];
+    const int e = (J == C.ny) ? 0 : 2 * J;
+    for (int I = 0; I < C.nx; ++I) {
+      int i0, i1;
+      span(I, C.nx, F.nx, i0, i1);
+      double s = 0.0;
+      for (int i = i0; i < i1; ++i) {
+        const double r = strip_resistance(sy, a, b, e - 3, e + 3, [&](int f) { return F.ty(i, f); });
+        if (r > 0 && std::isfinite(r)) s += 1.0 / r;
+      }
+      C.ty(I, J) = s;
     }
   });
 }
@@ -260,6 +358,7 @@ void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& 
     throw std::invalid_argument("multigrid: pre_smooth/post_smooth must be >= 0 and not both 0");
   if (opt.coarse_cells < 1) throw std::invalid_argument("multigrid: coarse_cells must be >= 1");
   jacobi_ = opt.smoother == MgSmoother::Jacobi;
+  coarse_op_ = opt.coarse_operator;
   pre_ = opt.pre_smooth;
   post_ = opt.post_smooth;
   omega_ = opt.jacobi_omega;
@@ -321,7 +420,10 @@ void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& 
   }
   sink_ = build_fine_operator(op, levels_[0].tx, levels_[0].ty, levels_[0].invd, levels_[0].c);
   for (std::size_t l = 1; l < levels_.size(); ++l) {
-    coarsen_operator(levels_[l - 1], levels_[l]);
+    switch (coarse_op_) {
+      case MgCoarseOperator::Average: coarsen_operator(levels_[l - 1], levels_[l]); break;
+      case MgCoarseOperator::Harmonic: coarsen_operator_harmonic(levels_[l - 1], levels_[l]); break;
+    }
     if (sink_) coarsen_sink(levels_[l - 1], levels_[l]);
     mg::Stencil s = stencil(int(l));
     compute_invd(s, levels_[l].invd);

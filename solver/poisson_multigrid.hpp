@@ -20,6 +20,13 @@
 // coarse face covers and the next fine face on either side), T_c = beta_c * len / dist.
 // (Averaging the two covered faces only was measured: V-cycles then diverge at density
 // ratio 1000 on 1024^2, and with the Jacobi smoother already on 256^2.)
+// This is coarse_operator = "average" (the default). "harmonic" (opt-in,
+// solver.coarse_operator) puts the fine faces in series between the two coarse centres and
+// the fine strips the coarse face covers in parallel -- the flux-preserving rule for a
+// density jump, identical for constant beta. With the bilinear prolongation it is WORSE on
+// the standard ratio-1000 disc (V-cycles: 48 instead of 13 on 256^2, no convergence on
+// 512^2; results/poisson_contrast.csv, results/README.md "Multigrid and density
+// contrast"); kept selectable for that comparison.
 // Prolongation: linear interpolation between cell centres in each direction (bilinear,
 // weights 9/16 3/16 3/16 1/16 on uniform levels), Neumann reflection (constant
 // extrapolation) at walls, wrap in periodic directions. Restriction: exactly P^T applied to
@@ -122,6 +129,7 @@ class MultigridHierarchy {
   double omega_ = 0.8;
   double rb_omega_ = 1.0;
   bool symmetric_ = false;
+  MgCoarseOperator coarse_op_ = MgCoarseOperator::Average;
   bool sink_ = false;  ///< the operator has a sink (PoissonOperator::sink with some c > 0)
   int coarse_cells_ = 64;
   struct Coarse;

@@ -806,6 +806,7 @@ void parse_solver(const Ctx& ctx, const Table& top, Config& cfg) {
   p.method = s.option<PoissonMethod>("poisson");
   p.cycle = s.option<MgCycle>("cycle");
   p.smoother = s.option<MgSmoother>("smoother");
+  p.coarse_operator = s.option<MgCoarseOperator>("coarse_operator");
   p.pre_smooth = int(s.integer("pre_smooth"));  // ranges of solver/scene_keys.cpp fit an int
   p.post_smooth = int(s.integer("post_smooth"));
   p.tol = s.number("tol");

@@ -195,6 +195,9 @@ std::vector<KeyDef> build_keys() {
       choice<MgCycle>("solver", "cycle", dp.cycle, "multigrid cycle"),
       choice<MgSmoother>("solver", "smoother", dp.smoother,
                          "multigrid smoother: red-black Gauss-Seidel or weighted Jacobi"),
+      choice<MgCoarseOperator>("solver", "coarse_operator", dp.coarse_operator,
+                               "multigrid coarse coefficients: restriction-weighted mean of beta, or fine faces "
+                               "in series normal to the coarse face (robust to density contrast)"),
       integer("solver", "pre_smooth", dp.pre_smooth, in(1, false, 100, false),
               "smoothing sweeps before coarse-grid correction"),
       integer("solver", "post_smooth", dp.post_smooth, in(1, false, 100, false),
