@@ -71,6 +71,14 @@ inline void residual_row(const Stencil& s, CView x, CView f, int j, double* __re
   const double* ts = &s.ty(0, j);
   const double* tn = &s.ty(0, j + 1);
   const int nx = s.nx;
+  if (s.c.p) {  // sink: (L x)_P gains -c_P x_P
+    const double* cr = &s.c(0, j);
+#pragma omp simd
+    for (int i = 0; i < nx; ++i)
+      out[i] = fr[i] - stencil5_apply(t[i], t[i + 1], ts[i], tn[i], xr[i - 1], xr[i + 1], xs[i], xn[i], xr[i]) +
+               cr[i] * xr[i];
+    return;
+  }
 #pragma omp simd
   for (int i = 0; i < nx; ++i)
     out[i] = fr[i] - stencil5_apply(t[i], t[i + 1], ts[i], tn[i], xr[i - 1], xr[i + 1], xs[i], xn[i], xr[i]);
@@ -280,6 +288,17 @@ inline double residual_row_norm2(const Stencil& s, CView x, CView f, int j) {
   const double* tn = &s.ty(0, j + 1);
   const int nx = s.nx;
   double a = 0.0;
+  if (s.c.p) {  // sink: (L x)_P gains -c_P x_P
+    const double* cr = &s.c(0, j);
+#pragma omp simd reduction(+ : a)
+    for (int i = 0; i < nx; ++i) {
+      const double v =
+          fr[i] - stencil5_apply(t[i], t[i + 1], ts[i], tn[i], xr[i - 1], xr[i + 1], xs[i], xn[i], xr[i]) +
+          cr[i] * xr[i];
+      a += v * v;
+    }
+    return a;
+  }
 #pragma omp simd reduction(+ : a)
   for (int i = 0; i < nx; ++i) {
     const double v =
@@ -730,6 +749,18 @@ double apply_dot(const Stencil& s, CView p, View q) {
     const double* tn = &s.ty(0, j + 1);
     double* __restrict qr = &q(0, j);
     double v = 0.0;
+    if (s.c.p) {  // sink: (L p)_P gains -c_P p_P
+      const double* cr = &s.c(0, j);
+#pragma omp simd reduction(+ : v)
+      for (int i = 0; i < nx; ++i) {
+        const double c = pr[i];
+        const double l =
+            stencil5_apply(t[i], t[i + 1], ts[i], tn[i], pr[i - 1], pr[i + 1], ps[i], pn[i], c) - cr[i] * c;
+        qr[i] = l;
+        v += c * l;
+      }
+      return v;
+    }
 #pragma omp simd reduction(+ : v)
     for (int i = 0; i < nx; ++i) {
       const double c = pr[i];

@@ -10,6 +10,11 @@
 // cell. On the finest level T = beta and L = dx^2 * A (A the operator of solver/poisson.hpp),
 // and the right-hand side f is the cell-integrated source dx^2 * rhs. Coarse right-hand
 // sides f_c = P^T r are again cell integrated, so no level carries a 1/h^2 factor.
+// Optional sink (Stencil::c, PoissonOperator::sink): (L x)_P = sum_f T_f (x_nb - x_P) - c_P x_P
+// with the cell-integrated c_P >= 0 (finest level dx^2 * sink, a coarse cell the sum over
+// the fine cells it covers); invd then is 1 / (sum_f T_f + c_P), so the relaxation kernels
+// need nothing else. Without a sink (c.p == nullptr) the kernels run the arithmetic they
+// always ran, bit for bit.
 //
 // Conventions shared by all kernels:
 //  * arrays are View/CView (pointer to (0,0) + row stride) with at least ONE ghost layer;
@@ -35,7 +40,8 @@ struct Stencil {
   Sides sides;                  ///< the kind of each side (wall or periodic)
   CView tx;                     ///< (nx+1) x ny face coefficients
   CView ty;                     ///< nx x (ny+1) face coefficients
-  CView invd;                   ///< nx x ny: 1 / sum_f T_f (0 for a cell with no faces)
+  CView invd;                   ///< nx x ny: 1 / (sum_f T_f + c) (0 for a cell with neither)
+  CView c;                      ///< nx x ny cell-integrated sink >= 0; c.p == nullptr: none
   int threads = 1;              ///< OpenMP team size for this level's kernels
 };
 

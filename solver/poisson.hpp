@@ -7,9 +7,21 @@
 // face of cell i), beta_y a y-face field (nx x (ny+1)). Each side has a FaceKind
 // (kernels/boundary_kind.hpp). Walls are homogeneous Neumann: the caller sets beta = 0 on
 // wall faces. A periodic direction wraps: face 0 and face n are the same face and carry
-// the same beta. refmap has no Dirichlet pressure boundary, so every problem is singular
-// (constants are the null space): solvers project the right-hand side onto zero mean and
-// return the zero-mean solution.
+// the same beta. Without a sink the problem is singular (constants are the null space):
+// solvers project the right-hand side onto zero mean and return the zero-mean solution.
+//
+// Optional sink c >= 0 (PoissonOperator::sink, cell field):
+//
+//     (1/dx^2) * sum_faces beta_f (x_nb - x_P) - c_P x_P = rhs_P.
+//
+// With any c_P > 0 the problem is non-singular: no mean is removed from rhs or x, and the
+// multigrid coarsest solve factors -L + diag(c) directly. Uses:
+//  * Helmholtz (implicit viscosity): (rho/dt) u - div(mu grad u) = r  <=>  beta = mu,
+//    c = rho/dt, rhs = -r;
+//  * a Dirichlet side x = 0: make that side a Wall (beta = 0 on its faces) and give the
+//    cells next to it c_P = 2 beta_face / dx^2 (the boundary face is half a cell away;
+//    second-order accurate, tests/test_poisson_sink.cpp).
+// sink == nullptr (or all zeros) runs exactly the arithmetic of the sink-free solvers.
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,6 +37,10 @@ struct PoissonOperator {
   Sides sides;  ///< walls on all four sides by default
   const Field* beta_x = nullptr;  ///< (nx+1) x ny
   const Field* beta_y = nullptr;  ///< nx x (ny+1)
+  /// Optional cell sink c >= 0 (nx x ny, may be nullptr): the problem becomes
+  ///   (1/dx^2) sum_f beta_f (x_nb - x_P) - c_P x_P = rhs_P.
+  /// With any c_P > 0 the problem is non-singular: no mean is removed from rhs or x.
+  const Field* sink = nullptr;
 };
 
 /// Pressure solver: geometric multigrid, plain CG, or multigrid-preconditioned CG.

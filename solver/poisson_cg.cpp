@@ -50,6 +50,7 @@ mg::Stencil CGSolver::stencil() const {
   s.tx = tx_.cview();
   s.ty = ty_.cview();
   s.invd = invd_.cview();
+  if (sink_) s.c = c_.cview();
   s.threads = threads_;
   return s;
 }
@@ -57,7 +58,7 @@ mg::Stencil CGSolver::stencil() const {
 void CGSolver::setup(const PoissonOperator& op) {
   validate_poisson_operator(op);
   op_ = op;
-  build_fine_operator(op, tx_, ty_, invd_);
+  sink_ = build_fine_operator(op, tx_, ty_, invd_, c_);
   const int nx = op.grid.nx, ny = op.grid.ny;
   ensure(nx, ny, {&f_, &r_, &p_, &q_});
   ready_ = true;

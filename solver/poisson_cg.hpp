@@ -7,6 +7,7 @@
 //    pre_smooth == post_smooth), coarse_cells, jacobi_omega; `cycle` is ignored (always V).
 // Both iterate on the finest-level cell-integrated system L x = dx^2 (rhs - mean) (L
 // negative semi-definite; CG's recurrences are sign-invariant) until ||r||/||rhs|| <= tol,
+// or, with a sink, L x = dx^2 rhs with L negative definite (no mean removed anywhere),
 // one "iteration" = one CG step (one operator application, one preconditioner call).
 #include "solver/poisson.hpp"
 #include "solver/poisson_multigrid.hpp"
@@ -24,7 +25,8 @@ class CGSolver final : public PoissonSolver {
   mg::Stencil stencil() const;
   PoissonOptions opt_;
   PoissonOperator op_;
-  Field tx_, ty_, invd_;
+  Field tx_, ty_, invd_, c_;
+  bool sink_ = false;  ///< c_ holds a cell-integrated sink (PoissonOperator::sink)
   Field f_, r_, p_, q_;
   int threads_ = 1;
   bool ready_ = false;

@@ -35,6 +35,15 @@ inline double face_dist(const std::vector<double>& c, double length, int e) {
 
 void compute_invd(const mg::Stencil& s, Field& invd) {
   const int nx = s.nx, ny = s.ny;
+  if (s.c.p) {  // sink: the diagonal of -L is sum_f T_f + c_P
+    parallel_rows(0, ny, nx, [&](int j) {
+      for (int i = 0; i < nx; ++i) {
+        const double d = s.tx(i, j) + s.tx(i + 1, j) + s.ty(i, j) + s.ty(i, j + 1) + s.c(i, j);
+        invd(i, j) = d > 0 ? 1.0 / d : 0.0;
+      }
+    });
+    return;
+  }
   parallel_rows(0, ny, nx, [&](int j) {
     for (int i = 0; i < nx; ++i) {
       const double d = s.tx(i, j) + s.tx(i + 1, j) + s.ty(i, j) + s.ty(i, j + 1);
@@ -96,6 +105,22 @@ void coarsen_operator(const MultigridHierarchy::Level& F, MultigridHierarchy::Le
   });
 }
 
+/// Coarse cell-integrated sink: the sum of the fine c over the fine cells the coarse cell
+/// covers (2I, 2I+1, and 2I+2 for the last coarse cell of an odd count), so that the coarse
+/// operator absorbs the same total sink as the fine one for a constant field.
+void coarsen_sink(const MultigridHierarchy::Level& F, MultigridHierarchy::Level& C) {
+  parallel_rows(0, C.ny, C.nx, [&](int J) {
+    const int j0 = 2 * J, j1 = (J == C.ny - 1) ? F.ny : 2 * J + 2;
+    for (int I = 0; I < C.nx; ++I) {
+      const int i0 = 2 * I, i1 = (I == C.nx - 1) ? F.nx : 2 * I + 2;
+      double a = 0.0;
+      for (int j = j0; j < j1; ++j)
+        for (int i = i0; i < i1; ++i) a += F.c(i, j);
+      C.c(I, J) = a;
+    }
+  });
+}
+
 }  // namespace
 
 // ------------------------------------------------------------------------------------------
@@ -107,10 +132,33 @@ void validate_poisson_operator(const PoissonOperator& op) {
   if (!(op.grid.dx > 0)) throw std::invalid_argument("Poisson operator: dx must be > 0");
   check_field(op.beta_x, nx + 1, ny, "beta_x");
   check_field(op.beta_y, nx, ny + 1, "beta_y");
+  if (op.sink) {
+    check_field(op.sink, nx, ny, "sink");
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        if (!((*op.sink)(i, j) >= 0.0) || !std::isfinite((*op.sink)(i, j)))
+          throw std::invalid_argument("Poisson operator: sink must be finite and >= 0 (cell " +
+                                      std::to_string(i) + ", " + std::to_string(j) + ")");
+  }
 }
 
-void build_fine_operator(const PoissonOperator& op, Field& tx, Field& ty, Field& invd) {
+bool has_sink(const PoissonOperator& op) {
+  if (!op.sink) return false;
+  for (int j = 0; j < op.grid.ny; ++j)
+    for (int i = 0; i < op.grid.nx; ++i)
+      if ((*op.sink)(i, j) > 0.0) return true;
+  return false;
+}
+
+bool build_fine_operator(const PoissonOperator& op, Field& tx, Field& ty, Field& invd, Field& c) {
   const int nx = op.grid.nx, ny = op.grid.ny;
+  const bool sink = has_sink(op);
+  if (sink) {
+    if (c.nx() != nx || c.ny() != ny || c.ng() < 1) c.resize(nx, ny, 1);
+    const double h2 = op.grid.dx * op.grid.dx;  // cell-integrated: c_int = dx^2 c
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) c(i, j) = h2 * (*op.sink)(i, j);
+  }
   if (tx.nx() != nx + 1 || tx.ny() != ny || tx.ng() < 1) tx.resize(nx + 1, ny, 1);
   if (ty.nx() != nx || ty.ny() != ny + 1 || ty.ng() < 1) ty.resize(nx, ny + 1, 1);
   if (invd.nx() != nx || invd.ny() != ny || invd.ng() < 1) invd.resize(nx, ny, 1);
@@ -153,14 +201,17 @@ void build_fine_operator(const PoissonOperator& op, Field& tx, Field& ty, Field&
   s.ny = ny;
   s.tx = tx.cview();
   s.ty = ty.cview();
+  if (sink) s.c = c.cview();
   compute_invd(s, invd);
+  return sink;
 }
 
 // ------------------------------------------------------------------------------------------
 struct MultigridHierarchy::Coarse {
   int nx = 0, ny = 0, n = 0;
   bool dense = true;
-  std::vector<double> chol;  ///< dense: lower Cholesky factor of -L + alpha 1 1^T, row-major
+  bool sink = false;  ///< -L + diag(c) is definite: no alpha 1 1^T, no pinned cell, no mean
+  std::vector<double> chol;  ///< dense: lower Cholesky factor of -L + alpha 1 1^T (+ diag c), row-major
   std::vector<double> b;
   Eigen::SparseMatrix<double> A;  ///< sparse: -L with cell 0 pinned
   Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt;
@@ -179,6 +230,7 @@ mg::Stencil MultigridHierarchy::stencil(int l) const {
   s.tx = L.tx.cview();
   s.ty = L.ty.cview();
   s.invd = L.invd.cview();
+  if (sink_) s.c = L.c.cview();
   s.threads = L.threads;
   return s;
 }
@@ -241,6 +293,7 @@ void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& 
       C.invd.resize(C.nx, C.ny, 1);
       C.x.resize(C.nx, C.ny, 1);
       C.f.resize(C.nx, C.ny, 1);
+      C.c.resize(C.nx, C.ny, 1);
       levels_.push_back(std::move(C));
     }
     std::size_t per = 8;
@@ -254,9 +307,10 @@ void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& 
     scratch_.per_thread = per;
     scratch_.nthreads = nt;
   }
-  build_fine_operator(op, levels_[0].tx, levels_[0].ty, levels_[0].invd);
+  sink_ = build_fine_operator(op, levels_[0].tx, levels_[0].ty, levels_[0].invd, levels_[0].c);
   for (std::size_t l = 1; l < levels_.size(); ++l) {
     coarsen_operator(levels_[l - 1], levels_[l]);
+    if (sink_) coarsen_sink(levels_[l - 1], levels_[l]);
     mg::Stencil s = stencil(int(l));
     compute_invd(s, levels_[l].invd);
   }
@@ -272,6 +326,7 @@ void MultigridHierarchy::build_coarse_solver() {
   c.ny = ny;
   c.n = n;
   c.dense = n <= 512;
+  c.sink = sink_;
   c.b.assign(n, 0.0);
   auto idx = [nx](int i, int j) { return i + nx * j; };
   // neighbours with coefficient: (k, m, T) for every interior/periodic face once (wall
@@ -295,10 +350,15 @@ void MultigridHierarchy::build_coarse_solver() {
       A[std::size_t(k) * n + m] -= T;
       A[std::size_t(m) * n + k] -= T;
     });
-    double tr = 0.0;
-    for (int k = 0; k < n; ++k) tr += A[std::size_t(k) * n + k];
-    const double alpha = (tr > 0 ? tr / n : 1.0) / n;
-    for (auto& a : A) a += alpha;
+    if (c.sink) {  // definite: -L + diag(c), no null space to lift
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) A[std::size_t(idx(i, j)) * n + idx(i, j)] += L.c(i, j);
+    } else {
+      double tr = 0.0;
+      for (int k = 0; k < n; ++k) tr += A[std::size_t(k) * n + k];
+      const double alpha = (tr > 0 ? tr / n : 1.0) / n;
+      for (auto& a : A) a += alpha;
+    }
     // in-place Cholesky (lower triangle)
     for (int k = 0; k < n; ++k) {
       double d = A[std::size_t(k) * n + k];
@@ -317,16 +377,22 @@ void MultigridHierarchy::build_coarse_solver() {
   } else {
     std::vector<Eigen::Triplet<double>> trip;
     trip.reserve(std::size_t(n) * 5);
+    const int pin = c.sink ? -1 : 0;  // with a sink nothing is pinned
     for_faces([&](int k, int m, double T) {
       if (k == m) return;
-      if (k != 0) trip.emplace_back(k, k, T);
-      if (m != 0) trip.emplace_back(m, m, T);
-      if (k != 0 && m != 0) {
+      if (k != pin) trip.emplace_back(k, k, T);
+      if (m != pin) trip.emplace_back(m, m, T);
+      if (k != pin && m != pin) {
         trip.emplace_back(k, m, -T);
         trip.emplace_back(m, k, -T);
       }
     });
-    trip.emplace_back(0, 0, 1.0);  // pinned cell: x_0 = 0, mean removed afterwards
+    if (c.sink) {
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) trip.emplace_back(idx(i, j), idx(i, j), L.c(i, j));
+    } else {
+      trip.emplace_back(0, 0, 1.0);  // pinned cell: x_0 = 0, mean removed afterwards
+    }
     c.A.resize(n, n);
     c.A.setFromTriplets(trip.begin(), trip.end());
     c.llt.compute(c.A);
@@ -340,10 +406,12 @@ void MultigridHierarchy::build_coarse_solver() {
 void MultigridHierarchy::coarse_solve(int l, View x, CView f) {
   Coarse& c = *coarse_;
   const int nx = c.nx, ny = c.ny, n = c.n;
-  double mean = 0.0;
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) mean += f(i, j);
-  mean /= n;
+  double mean = 0.0;  // with a sink the problem is definite: f is solved as it is
+  if (!c.sink) {
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) mean += f(i, j);
+    mean /= n;
+  }
   // solve (-L) e = -(f - mean)
   if (c.dense) {
     double* b = c.b.data();
@@ -366,13 +434,15 @@ void MultigridHierarchy::coarse_solve(int l, View x, CView f) {
   } else {
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) c.vb[i + nx * j] = mean - f(i, j);
-    c.vb[0] = 0.0;
+    if (!c.sink) c.vb[0] = 0.0;
     c.ve = c.llt.solve(c.vb);
     // mean by a plain loop (Eigen's vectorised mean() trips a false -Wmaybe-uninitialized
     // of GCC 12 with AVX-512)
     double em = 0.0;
-    for (Eigen::Index k = 0; k < c.ve.size(); ++k) em += c.ve[k];
-    em /= double(c.ve.size());
+    if (!c.sink) {
+      for (Eigen::Index k = 0; k < c.ve.size(); ++k) em += c.ve[k];
+      em /= double(c.ve.size());
+    }
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) x(i, j) = c.ve[i + nx * j] - em;
   }
@@ -454,7 +524,8 @@ double prepare_rhs(const PoissonOperator& op, const mg::Stencil& s, const Field&
                                 std::to_string(x.ny()) + ", grid is " + std::to_string(nx) +
                                 " x " + std::to_string(ny));
   if (x.ng() < 1) throw std::invalid_argument("Poisson solve: x needs at least one ghost layer");
-  const double mean = mg::sum(s, rhs.cview()) / double(op.grid.cells());
+  // with a sink (s.c) the problem is non-singular: the rhs keeps its mean
+  const double mean = s.c.p ? 0.0 : mg::sum(s, rhs.cview()) / double(op.grid.cells());
   const double h2 = op.grid.dx * op.grid.dx;
   return std::sqrt(mg::shift_scale(s, rhs.cview(), mean, h2, f));
 }
@@ -472,6 +543,10 @@ bool start_solve(const mg::Stencil& s, double bnorm, View x, bool record, SolveS
 }
 
 void remove_mean(const mg::Stencil& s, View x) {
+  if (s.c.p) {  // with a sink the solution is unique: nothing to remove
+    mg::fill_ghosts(s, x);
+    return;
+  }
   const double mean = mg::sum(s, x) / (double(s.nx) * double(s.ny));
   mg::add_scalar(s, x, -mean);
   mg::fill_ghosts(s, x);

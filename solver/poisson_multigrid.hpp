@@ -33,6 +33,9 @@
 // Coarsest level: exact solve (dense Cholesky of -L + alpha 1 1^T up to 512 cells, sparse
 // Cholesky with one pinned cell above -- only for degenerate grids, e.g. 4 x 5000, and that
 // path allocates in solve), right-hand side projected to zero sum, zero-mean solution.
+// With a sink (PoissonOperator::sink, some c > 0) every level carries the cell-integrated
+// c (finest dx^2 c, coarse: the sum over the covered fine cells), and the coarsest solve is
+// the Cholesky of -L + diag(c) as it stands (no alpha, no pinned cell, no mean removed).
 // With equal pre/post smoothing counts and symmetric = true the V-cycle is a symmetric
 // linear operator (used by mgpcg).
 // Passes over memory per level and cycle (red-black smoother, walls in y): two -- the
@@ -50,10 +53,14 @@ namespace refmap {
 /// Checks shared by the solvers: operator fields present and of the right size.
 void validate_poisson_operator(const PoissonOperator& op);
 
+/// True when op.sink is given and has a cell with c > 0 (the problem is then definite).
+bool has_sink(const PoissonOperator& op);
+
 /// Finest-level coefficients: tx = beta_x with wall faces set to 0 and the two periodic
-/// faces set to their mean, ty likewise, invd = 1/sum T (0 if no face). Fields are
-/// (re)sized with one ghost layer.
-void build_fine_operator(const PoissonOperator& op, Field& tx, Field& ty, Field& invd);
+/// faces set to their mean, ty likewise; with a sink (has_sink) c = dx^2 sink (cell
+/// integrated) and invd = 1/(sum T + c), else c is left alone and invd = 1/sum T (0 if no
+/// face). Fields are (re)sized with one ghost layer. Returns has_sink(op).
+bool build_fine_operator(const PoissonOperator& op, Field& tx, Field& ty, Field& invd, Field& c);
 
 class MultigridHierarchy {
  public:
@@ -63,6 +70,7 @@ class MultigridHierarchy {
     std::vector<double> cx, cy, wx, wy;  ///< cell centres / widths, finest-cell units
     double lx = 0, ly = 0;               ///< domain length, finest-cell units
     Field tx, ty, invd;                  ///< operator
+    Field c;                             ///< cell-integrated sink (used only with one)
     Field x, f;                          ///< iterate and right-hand side (levels >= 1)
     mg::Transfer1D trx, try_;            ///< transfer to level + 1 (unused on the last level)
     int threads = 1;
@@ -114,6 +122,7 @@ class MultigridHierarchy {
   double omega_ = 0.8;
   double rb_omega_ = 1.0;
   bool symmetric_ = false;
+  bool sink_ = false;  ///< the operator has a sink (PoissonOperator::sink with some c > 0)
   int coarse_cells_ = 64;
   struct Coarse;
   std::unique_ptr<Coarse> coarse_;
@@ -138,13 +147,13 @@ class MultigridSolver final : public PoissonSolver {
 
 namespace detail {
 /// Shared solve prologue: checks x/rhs shapes (x needs >= 1 ghost layer), writes
-/// f = dx^2 (rhs - mean rhs) into f, returns ||f||_2.
+/// f = dx^2 (rhs - mean rhs) into f (f = dx^2 rhs with a sink, s.c), returns ||f||_2.
 double prepare_rhs(const PoissonOperator& op, const mg::Stencil& s, const Field& rhs,
                    const Field& x, View f);
 /// Shared start of a solve after prepare_rhs: if bnorm = 0 sets x = 0 and a converged
 /// `st` and returns false (nothing to solve); else refreshes x's ghosts and returns true.
 bool start_solve(const mg::Stencil& s, double bnorm, View x, bool record, SolveStats& st);
-/// Shared epilogue: x -= mean(x), ghosts refreshed.
+/// Shared epilogue: x -= mean(x) (not with a sink, s.c), ghosts refreshed.
 void remove_mean(const mg::Stencil& s, View x);
 }  // namespace detail
 
