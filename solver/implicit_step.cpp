@@ -30,78 +30,37 @@ ImplicitVelocity::ImplicitVelocity(const Config& cfg) : cfg_(cfg), sides_(face_s
   const int nx = cfg_.grid.nx, ny = cfg_.grid.ny, ng = Grid::ng;
   for (int comp = 0; comp < 2; ++comp)
     for (int s = 0; s < 4; ++s) fixed_[std::size_t(comp)][std::size_t(s)] = prescribed(cfg_.bc[std::size_t(s)], comp, Side(s));
-  bx_.resize(nx + 1, ny, ng);
-  by_.resize(nx, ny + 1, ng);
-  for (Field* f : {&c_, &rhs_, &r_, &z_, &p_, &q_, &du_, &dv_}) f->resize(nx, ny, ng);
+  for (int comp = 0; comp < 2; ++comp) {
+    bx_[std::size_t(comp)].resize(nx + 1, ny, ng);
+    by_[std::size_t(comp)].resize(nx, ny + 1, ng);
+    c_[std::size_t(comp)].resize(nx, ny, ng);
+    solver_[std::size_t(comp)] = make_poisson_solver(cfg_.poisson);
+  }
+  for (Field* f : {&rhs_, &du_, &dv_}) f->resize(nx, ny, ng);
 }
 
 SolveStats ImplicitVelocity::solve(int comp, const Field& f, const Field& rho, const Field& m,
                                    double dt, Field& d) {
   const Grid& g = cfg_.grid;
   const int nx = g.nx, ny = g.ny;
-  const double dx = g.dx;
+  const std::size_t k = std::size_t(comp);
   // x faces carry 2 m for u and m for v, y faces the reverse (kernels/helmholtz.hpp)
   const double ax = comp == 0 ? 2.0 : 1.0, ay = comp == 0 ? 1.0 : 2.0;
-  helmholtz_faces(m.cview(), bx_.view(), by_.view(), nx, ny, ax, ay, sides_);
-  helmholtz_sink(rho.cview(), m.cview(), c_.view(), nx, ny, dx, dt, ax, ay, sides_,
-                 fixed_[std::size_t(comp)]);
-  // Jacobi-preconditioned conjugate gradients on M d = f, M = -(the sink-API operator),
-  // symmetric positive definite (c > 0)
-  const double inv2 = 1.0 / (dx * dx);
-  SolveStats st;
-  auto dot = [&](const Field& a, const Field& b) {
-    return parallel_rows_sum(0, ny, nx, [&](int j) {
-      double s = 0.0;
-      for (int i = 0; i < nx; ++i) s += a(i, j) * b(i, j);
-      return s;
-    });
-  };
-  helmholtz_ghosts(d.view(), nx, ny, sides_);
-  helmholtz_apply(d.cview(), bx_.cview(), by_.cview(), c_.cview(), q_.view(), nx, ny, dx);
-  auto diag = [&](int i, int j) {
-    return c_(i, j) + (bx_(i, j) + bx_(i + 1, j) + by_(i, j) + by_(i, j + 1)) * inv2;
-  };
+  helmholtz_faces(m.cview(), bx_[k].view(), by_[k].view(), nx, ny, ax, ay, sides_);
+  helmholtz_sink(rho.cview(), m.cview(), c_[k].view(), nx, ny, g.dx, dt, ax, ay, sides_, fixed_[k]);
+  PoissonOperator op;
+  op.grid = g;
+  op.sides = sides_;
+  op.beta_x = &bx_[k];
+  op.beta_y = &by_[k];
+  op.sink = &c_[k];
+  solver_[k]->setup(op);
+  // sink-API form: (1/dx^2) sum beta (d_nb - d_P) - c d_P = -f
   parallel_rows(0, ny, nx, [&](int j) {
-    for (int i = 0; i < nx; ++i) {
-      r_(i, j) = f(i, j) + q_(i, j);  // f - M d
-      z_(i, j) = r_(i, j) / diag(i, j);
-      p_(i, j) = z_(i, j);
-    }
+    for (int i = 0; i < nx; ++i) rhs_(i, j) = -f(i, j);
   });
-  const double fnorm = std::sqrt(dot(f, f));
-  if (fnorm == 0.0) {
-    d.fill(0.0);
-    st.converged = true;
-    return st;
-  }
-  double rz = dot(r_, z_);
-  double rn = std::sqrt(dot(r_, r_)) / fnorm;
-  const double tol = cfg_.poisson.tol;
-  const int max_iter = std::max(cfg_.poisson.max_iter, 1000);
-  while (rn > tol && st.iterations < max_iter) {
-    helmholtz_ghosts(p_.view(), nx, ny, sides_);
-    helmholtz_apply(p_.cview(), bx_.cview(), by_.cview(), c_.cview(), q_.view(), nx, ny, dx);
-    const double pq = -dot(p_, q_);  // p^T M p
-    const double alpha = rz / pq;
-    parallel_rows(0, ny, nx, [&](int j) {
-      for (int i = 0; i < nx; ++i) {
-        d(i, j) += alpha * p_(i, j);
-        r_(i, j) += alpha * q_(i, j);  // r -= alpha M p
-        z_(i, j) = r_(i, j) / diag(i, j);
-      }
-    });
-    const double rz_new = dot(r_, z_);
-    const double beta = rz_new / rz;
-    rz = rz_new;
-    parallel_rows(0, ny, nx, [&](int j) {
-      for (int i = 0; i < nx; ++i) p_(i, j) = z_(i, j) + beta * p_(i, j);
-    });
-    rn = std::sqrt(dot(r_, r_)) / fnorm;
-    ++st.iterations;
-  }
-  st.rel_residual = rn;
-  st.converged = rn <= tol;
-  return st;
+  // initial guess: the last step's change (d = 0 would be u^n itself)
+  return solver_[k]->solve(rhs_, d);
 }
 
 void ImplicitVelocity::apply(Field& u, Field& v, const Field& fx, const Field& fy,

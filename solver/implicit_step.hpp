@@ -55,7 +55,12 @@ class ImplicitVelocity {
   Config cfg_;
   Sides sides_;
   std::array<std::array<bool, 4>, 2> fixed_{};  ///< per component, per side: Dirichlet
-  Field bx_, by_, c_, rhs_, r_, z_, p_, q_;
+  // per component: face coefficients, sink and the solver (the pressure solver's method
+  // and options, solver/poisson.hpp, with the sink term), set up anew every step (rho, m
+  // and dt change)
+  std::array<Field, 2> bx_, by_, c_;
+  std::array<std::unique_ptr<PoissonSolver>, 2> solver_;
+  Field rhs_;
   Field du_, dv_;  ///< the last step's changes: the initial guesses (warm start)
   int iterations_ = 0;
   double residual_ = 0.0;
