@@ -84,7 +84,11 @@ def shear(args, w):
 def soft_disc(args, w):
     res = {}
     for variant, extra in (("explicit", []), ("semi_implicit", SEMI)):
-        info = run(args, "scenes/soft_disc_cavity.toml", "soft_disc_" + variant, ["time.end=1.0", "output.interval=0"] + extra)
+        # to t = 1 of the scene's 8: the automatic contact velocity scale is lx / t_end
+        # without an initial flow (solver/contact.cpp), so keep the full run's 1/8, or the
+        # shorter run's contact limit (8e-4) would set dt for both variants
+        info = run(args, "scenes/soft_disc_cavity.toml", "soft_disc_" + variant,
+                   ["time.end=1.0", "output.interval=0", "contact.velocity_scale=0.125"] + extra)
         res[variant] = info
         c = info["diag"][-1] if info.get("diag") else {}
         out_row(w, "soft_disc_cavity_t1", variant, info, cx=float(c.get("solid0_cx", "nan")), cy=float(c.get("solid0_cy", "nan")))
@@ -141,7 +145,14 @@ def main():
     args = ap.parse_args()
     os.makedirs(args.raw, exist_ok=True)
     os.makedirs(args.out, exist_ok=True)
+    # rows of the cases not run now are kept from the last results/implicit.csv
+    prefix = {"couette": "couette_elastic", "shear": "shear_wave", "soft_disc": "soft_disc",
+              "bounce": "bounce_stiff", "disc_tgv": "disc_tgv"}
+    path = os.path.join(args.out, "implicit.csv")
     w = []
+    if os.path.exists(path):
+        w = [r for r in csv.DictReader(open(path))
+             if not any(r["case"].startswith(prefix[c]) for c in args.cases)]
     for c in args.cases:
         {"couette": couette, "shear": shear, "soft_disc": soft_disc, "bounce": bounce, "disc_tgv": disc_tgv}[c](args, w)
         keys = []
