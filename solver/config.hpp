@@ -36,6 +36,12 @@ enum class SolidMotion { Free, Fixed, Prescribed, Pinned };
 enum class ExtrapolationMethod { Lsq, Pde };
 /// SolidsOptions::stress_form: discretisation of the solid stress divergence.
 enum class StressForm { Cell, Face };
+/// Config::viscous_time: the viscous stress forward Euler (eq. 5.2) or backward Euler in
+/// its compact part (solver/implicit_step.hpp, docs/implicit.md).
+enum class ViscousTime { Explicit, Implicit };
+/// Config::solid_time: the solid stress explicit, or explicit plus the stabilising implicit
+/// isotropic term eta = k G dt (1 - H) minus its explicit counterpart (docs/implicit.md).
+enum class SolidStressTime { Explicit, SemiImplicit };
 
 /// Boundary condition of one side. `velocity` is the tangential wall speed of a moving
 /// wall (u on bottom/top, v on left/right); the normal velocity at a wall is always 0.
@@ -174,6 +180,9 @@ struct Config {
   double dt_max = 1e30;
   long max_steps = 0;        ///< 0 = unlimited
   double steady_tol = 0.0;   ///< > 0: stop when max|u^{n+1}-u^n|/dt < steady_tol
+  ViscousTime viscous_time = ViscousTime::Explicit;        ///< time.viscous
+  SolidStressTime solid_time = SolidStressTime::Explicit;  ///< time.solid_stress
+  double solid_implicit_k = 0.5;  ///< time.solid_implicit_k: k of eta = k G dt (stable for k >= 1/4)
 
   // numerics
   FluxScheme advection = FluxScheme::Central;  ///< momentum fluxes of eq. (5.1)

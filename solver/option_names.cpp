@@ -69,6 +69,17 @@ std::span<const OptionName<StressForm>> option_names(StressForm) {
   return span_of(n);
 }
 
+std::span<const OptionName<ViscousTime>> option_names(ViscousTime) {
+  static const OptionName<ViscousTime> n[] = {{ViscousTime::Explicit, "explicit"}, {ViscousTime::Implicit, "implicit"}};
+  return span_of(n);
+}
+
+std::span<const OptionName<SolidStressTime>> option_names(SolidStressTime) {
+  static const OptionName<SolidStressTime> n[] = {{SolidStressTime::Explicit, "explicit"},
+                                                  {SolidStressTime::SemiImplicit, "semi_implicit"}};
+  return span_of(n);
+}
+
 std::span<const OptionName<XiFlux>> option_names(XiFlux) {
   static const OptionName<XiFlux> n[] = {
       {XiFlux::Central, "central"}, {XiFlux::Superbee, "superbee"}, {XiFlux::VanLeer, "vanleer"}};

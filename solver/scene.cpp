@@ -793,6 +793,9 @@ void parse_time(const Ctx& ctx, const Table& top, Config& cfg) {
   cfg.dt_max = t.number("dt_max");
   cfg.max_steps = t.integer("max_steps");
   cfg.steady_tol = t.number("steady_tol");
+  cfg.viscous_time = t.option<ViscousTime>("viscous");
+  cfg.solid_time = t.option<SolidStressTime>("solid_stress");
+  cfg.solid_implicit_k = t.number("solid_implicit_k");
 }
 
 void parse_solver(const Ctx& ctx, const Table& top, Config& cfg) {

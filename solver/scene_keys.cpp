@@ -184,6 +184,16 @@ std::vector<KeyDef> build_keys() {
       integer("time", "max_steps", d.max_steps, ge(0, "0 = unlimited"), "stop after this many steps (0: unlimited)"),
       num("time", "steady_tol", d.steady_tol, ge(0, "0 = off"),
           "stop when max abs(u^{n+1} - u^n) / dt < steady_tol (0: off)"),
+      choice<ViscousTime>("time", "viscous", d.viscous_time,
+                          "`\"explicit\"`: forward Euler (eq. 5.2; dt <= viscous_safety rho dx^2 / (6 mu)); "
+                          "`\"implicit\"`: backward Euler in the compact part, solved by the pressure solver's "
+                          "method with a sink term; no viscous time-step limit (docs/implicit.md)"),
+      choice<SolidStressTime>("time", "solid_stress", d.solid_time,
+                              "`\"explicit\"`: dt <= solid_cfl dx sqrt(rho_s / G); `\"semi_implicit\"`: an "
+                              "implicit isotropic term eta = k G dt (1 - H) added and its explicit counterpart "
+                              "subtracted (first order in dt); no solid time-step limit (docs/implicit.md)"),
+      num("time", "solid_implicit_k", d.solid_implicit_k, gt(0),
+          "k of the semi-implicit solid stress: eta = k G dt (stable for k >= 1/4, docs/implicit.md)"),
 
       choice<FlowMode>("solver", "flow", d.flow,
                        "`\"solve\"`: the Navier-Stokes equations; `\"prescribed\"`: no flow solve, the initial "

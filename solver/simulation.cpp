@@ -45,6 +45,10 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
     for (Field* f : {&sxx_, &sxy_, &syy_}) f->resize(nx, ny, ng);
   if (RigidBodies::needed(cfg_)) bodies_ = std::make_unique<RigidBodies>(cfg_);
   poisson_ = make_poisson_solver(cfg_.poisson);
+  if (cfg_.viscous_time == ViscousTime::Implicit || cfg_.solid_time == SolidStressTime::SemiImplicit) {
+    implicit_ = std::make_unique<ImplicitVelocity>(cfg_);
+    mimp_.resize(nx, ny, ng);
+  }
   initialise();
   if (!cfg_.tracers.empty())
     tracers_ = std::make_unique<Tracers>(cfg_.grid, tracer_seeds(cfg_.tracers), cfg_.bc[0].type == BcType::Periodic,
@@ -320,8 +324,12 @@ double Simulation::stable_dt() const {
     for (int i = 0; i < g.nx; ++i) m = std::max(m, mu_(i, j) / rho_(i, j));
     return m;
   });
-  if (nu_max > 0.0) dt = std::min(dt, cfg_.visc_safety * g.dx * g.dx / (6.0 * nu_max));
-  for (const auto& s : solids_) dt = std::min(dt, s->min_dt());
+  // (no viscous limit with the implicit viscous step, no shear-wave limit with the
+  // semi-implicit solid stress: solver/implicit_step.hpp)
+  if (nu_max > 0.0 && cfg_.viscous_time == ViscousTime::Explicit)
+    dt = std::min(dt, cfg_.visc_safety * g.dx * g.dx / (6.0 * nu_max));
+  if (cfg_.solid_time == SolidStressTime::Explicit)
+    for (const auto& s : solids_) dt = std::min(dt, s->min_dt());
   if (contact_ && contact_->force_enabled()) {
     // the force acts in the layer -2 dx < phi < 0 of a solid, where the blended density is
     // at least the mean of the solid's and the fluid's
@@ -496,8 +504,22 @@ void Simulation::apply_viscous_and_solid_stress(double dt) {
     ScopedPhase ph(timers_, "solid stress");
     solid_force();
   }
-  if (viscous || elastic)
+  if ((viscous || elastic) && implicit_) {
+    ScopedPhase ph(timers_, "implicit velocity");
+    implicit_viscosity(dt);
+    implicit_->apply(u_, v_, fx_, fy_, rho_, mimp_, dt);
+  } else if (viscous || elastic) {
     apply_force(u_.view(), v_.view(), fx_.view(), fy_.view(), rho_.view(), dt, nx, ny);
+  }
+}
+
+void Simulation::implicit_viscosity(double dt) {
+  if (cfg_.viscous_time == ViscousTime::Implicit) mimp_ = mu_;
+  else mimp_.fill(0.0);
+  if (cfg_.solid_time == SolidStressTime::SemiImplicit)
+    for (const auto& s : solids_)  // blended like the stress, eq. (3.6)
+      if (s->spec().mu_s > 0.0) s->add_blend(mimp_, cfg_.solid_implicit_k * s->wave_modulus() * dt, 0.0);
+  fill_scalar_ghosts(mimp_, cfg_.bc);
 }
 
 void Simulation::setup_poisson() {

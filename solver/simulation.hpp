@@ -8,6 +8,7 @@
 
 #include "solver/config.hpp"
 #include "solver/contact.hpp"
+#include "solver/implicit_step.hpp"
 #include "core/field.hpp"
 #include "core/grid.hpp"
 #include "solver/poisson.hpp"
@@ -82,6 +83,8 @@ class Simulation {
   double kinetic_energy() const;
   double max_face_divergence() const;  ///< max over cells of |div u_f| (faces' net flux / dx)
   int last_poisson_iterations() const { return last_stats_.iterations; }
+  /// The implicit velocity solve (time.viscous / time.solid_stress; null when explicit).
+  const ImplicitVelocity* implicit_velocity() const { return implicit_.get(); }
   double last_poisson_residual() const { return last_stats_.rel_residual; }
   const PhaseTimers& timers() const { return timers_; }
   /// The run loop books its output phases here and resets it after the warm-up.
@@ -139,6 +142,10 @@ class Simulation {
   void blend_material_fields();
   /// Force of the solid stresses (conservative or not) into fx_, fy_ (which it overwrites).
   void solid_force();
+  /// The implicit viscosity of solver/implicit_step.hpp into mimp_: mu (time.viscous =
+  /// "implicit") plus eta = k G dt (1 - H) of every elastic solid (time.solid_stress =
+  /// "semi_implicit").
+  void implicit_viscosity(double dt);
   void impose_prescribed_velocity(double t);
   /// Subtracts beta_f times the contact face force from the face accelerations gxf_, gyf_.
   void add_contact_face_accel();
@@ -168,6 +175,8 @@ class Simulation {
   Field cfx_, cfy_;                        // contact force density of the last step
   std::unique_ptr<PoissonSolver> poisson_;
   SolveStats last_stats_;
+  std::unique_ptr<ImplicitVelocity> implicit_;  ///< implicit stress step (null: explicit)
+  Field mimp_;                                   ///< its implicit viscosity
   PhaseTimers timers_;
   std::unique_ptr<Tracers> tracers_;
   std::unique_ptr<Markers> markers_;

@@ -337,6 +337,14 @@ SolidDiagnostics Solid::diagnostics(const Field& u, const Field& v) const {
   return d;
 }
 
+double Solid::wave_modulus() const {
+  if (spec_.mu_s <= 0.0) return 0.0;
+  const double rest = with_constitutive_model(spec_, [](const auto& m) {
+    return m.wave_modulus({1.0, 0.0, 1.0});
+  });
+  return std::max(rest, max_wave_modulus_);
+}
+
 double Solid::min_dt() const {
   if (spec_.mu_s <= 0.0) return 1e300;
   // section 4: dt <= P dx sqrt(rho_s / G), shear-wave speed sqrt(G / rho_s), G = 2 mu_s.

@@ -105,6 +105,9 @@ class Solid {
 
   SolidDiagnostics diagnostics(const Field& u, const Field& v) const;
   double min_dt() const;  ///< shear-wave limit of section 4
+  /// The shear modulus min_dt() uses: the model's at rest (G = 2 mu_s for neo-Hookean) or
+  /// the largest tangent modulus at the last stress evaluation, whichever is larger.
+  double wave_modulus() const;
 
   // --- window and fields (window-local, (i, j) <-> global (i0 + i, j0 + j)) ----------
   int i0() const { return i0_; }
