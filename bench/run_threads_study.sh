@@ -10,7 +10,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 A=$1; B=$2; REPS=${3:-3}
-SCENES=${SCENES:-"bench/scenes/many_discs_64.toml:30 bench/scenes/many_discs_16.toml:30 scenes/two_solids_tgv.toml:300 scenes/couette_elastic.toml:3000"}
+SCENES=${SCENES:-"bench/scenes/incrmt_circles_42.toml:100 bench/scenes/many_discs_64.toml:30 bench/scenes/many_discs_16.toml:30 scenes/two_solids_tgv.toml:300 scenes/couette_elastic.toml:3000"}
 TMP=$(mktemp -d /tmp/solids_par_study.XXXX)
 busy=""
 if [[ "${BUSY:-0}" == 1 ]]; then nice -n "${BUSY_NICE:-19}" sh -c 'while :; do :; done' & busy=$!; fi
