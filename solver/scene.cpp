@@ -600,6 +600,29 @@ void parse_fluid(const Ctx& ctx, const Table& top, Config& cfg) {
   cfg.mu_f = f.number("viscosity");
 }
 
+/// The text of an expression key; a plain number is accepted as an expression too
+/// (u_expr = 0). The expression is parsed here so a bad one fails at load time.
+std::string expression_text(const Table& t, const char* key) {
+  const toml::node* n = t.node(key);
+  std::string text;
+  if (n && n->as_integer()) {
+    text = std::to_string(n->as_integer()->get());
+  } else if (n && n->as_floating_point()) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", n->as_floating_point()->get());
+    text = buf;
+  } else {
+    text = t.string(key);
+  }
+  try {
+    Expression e(text);
+    (void)e;
+  } catch (const std::invalid_argument& ex) {
+    t.fail(key, "invalid expression " + dq(text) + ": " + ex.what());
+  }
+  return text;
+}
+
 SideBc parse_side(const Ctx& ctx, const Table& b, const char* side) {
   const std::vector<std::string> kinds = canonical_names<BcType>();
   const toml::node* n = b.node(side);
@@ -641,25 +664,9 @@ SideBc parse_side(const Ctx& ctx, const Table& b, const char* side) {
     if (!s.has(normal))
       s.fail("type", std::string("an inflow on the ") + side + " side needs its normal velocity `" + normal +
                          "` (an expression of x, y, t)");
-    // a plain number is accepted as an expression too (u = 1)
-    for (const char* k : {"u", "v"}) {
-      std::string text = "0";
-      if (const toml::node* n = s.node(k)) {
-        if (n->as_integer()) text = std::to_string(n->as_integer()->get());
-        else if (n->as_floating_point()) {
-          char buf[40];
-          std::snprintf(buf, sizeof buf, "%.17g", n->as_floating_point()->get());
-          text = buf;
-        } else {
-          text = s.string(k);
-        }
-      }
-      try {
-        (std::string(k) == "u" ? bc.inflow_u : bc.inflow_v) = Expression(text);
-      } catch (const std::invalid_argument& ex) {
-        s.fail(k, "invalid expression " + dq(text) + ": " + ex.what());
-      }
-    }
+    // a plain number is accepted as an expression too (u = 1); an absent component is 0
+    for (const char* k : {"u", "v"})
+      (std::string(k) == "u" ? bc.inflow_u : bc.inflow_v) = Expression(s.has(k) ? expression_text(s, k) : "0");
     return bc;
   }
   if (bc.type != BcType::MovingWall) {
@@ -703,29 +710,6 @@ void parse_boundary(const Ctx& ctx, const Table& top, Config& cfg) {
   if (inflow >= 0 && !outflow)
     b.fail(names[inflow], "an inflow side needs an \"outflow\" side for the fluid to leave through "
                           "(with walls and periodic sides only, the inflow could not be balanced)");
-}
-
-/// The text of an expression key; a plain number is accepted as an expression too
-/// (u_expr = 0). The expression is parsed here so a bad one fails at load time.
-std::string expression_text(const Table& t, const char* key) {
-  const toml::node* n = t.node(key);
-  std::string text;
-  if (n && n->as_integer()) {
-    text = std::to_string(n->as_integer()->get());
-  } else if (n && n->as_floating_point()) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", n->as_floating_point()->get());
-    text = buf;
-  } else {
-    text = t.string(key);
-  }
-  try {
-    Expression e(text);
-    (void)e;
-  } catch (const std::invalid_argument& ex) {
-    t.fail(key, "invalid expression " + dq(text) + ": " + ex.what());
-  }
-  return text;
 }
 
 void parse_initial(const Ctx& ctx, const Table& top, Config& cfg) {
@@ -1140,16 +1124,7 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
       a.allow();
       for (const char* k : {"stretch_x", "shear"}) {
         if (!a.has(k)) continue;
-        const toml::node* n = a.node(k);
-        std::string text;
-        if (n->as_integer()) text = std::to_string(n->as_integer()->get());
-        else if (n->as_floating_point()) {
-          char buf[40];
-          std::snprintf(buf, sizeof buf, "%.17g", n->as_floating_point()->get());
-          text = buf;
-        } else {
-          text = a.string(k);
-        }
+        const std::string text = expression_text(a, k);
         try {
           const Expression e(text);
           const double v = e.eval(0.0, 0.0, cfg.t_start);
