@@ -19,13 +19,17 @@ Sweeps (scene scenes/disc_tgv.toml, a soft disc R = 0.2 in a decaying Taylor-Gre
 vortex, free-slip box):
   a  solid time-step factor P (solids.solid_cfl; dt <= P dx / sqrt(2 mu_s / rho_s)) against
      the stiffness mu_s / rho_s = 1e2 .. 1e5 (the solid limit then binds, not the
-     advective one), 400 steps, for stress_discretisation x conservative x xi_advection
+     advective one), 400 steps, for stress_discretisation x conservative x xi_advection;
+     and the semi-implicit method (time.viscous = "implicit", time.solid_stress =
+     "semi_implicit", docs/implicit.md; k = 0.5, 0.1 and 2), which has no solid limit: its P is
+     imposed through time.dt_max = P dx / sqrt(2 mu_s / rho_s), up to P = 128, and where the
+     advective limit binds first the P actually used is p_effective
   b  flow amplitude A / A0 (initial.amplitude, A0 = 0.05 * 2 pi as the scene) until the map
      folds, the area drifts or the run stops, 64 x 64 (R/dx = 12.8), to t = 2, for the extrapolations lsq (radius
      2.83 and 5.66) and pde, and lsq 2.83 with the non-conservative form; the strain reached
      is the largest principal stretch lambda from the largest normal stress
      sigma_max = mu_s (tr b - 2) assuming det b = 1: tr b = lambda^2 + lambda^-2, over the
-     rows before the failing state
+     rows before the failing state; also the semi-implicit method (k = 0.5, lsq 2.83)
   c  density ratio rho_s / rho_f = 1e-3 .. 1e3 at mu_s / rho_s = 0.5 (the shear-wave speed
      and so the solid time step stay the scene's), 48 x 48, to t = 1, without gravity and
      with g = 1 downwards (then no energy bound: potential energy is released), for the
@@ -34,9 +38,10 @@ vortex, free-slip box):
      per step are recorded (poisson_iter_mean / _max)
   d  contact, scenes/wall_microgravity.toml (a disc launched at the bottom wall, no gravity),
      48 x 48, to t = 0.5: the impact speed V with the contact strength held at the scene's
-     (velocity_scale 1.5), and the contact stiffness at V = 3; `inaccurate` also when the
-     disc overlaps the wall or another solid (gap_wall / gap_solid < 0 in any row), and the
-     energy bound includes the contact spring's energy
+     (velocity_scale 1.5), and the contact stiffness at V = 3; the same two for two such
+     discs (the second added by --set) launched head-on at each other at V each, to t = 0.3;
+     `inaccurate` also when a disc overlaps the wall or another solid (gap_wall / gap_solid
+     < 0 in any row of any solid), and the energy bound includes the contact spring's energy
   e  resolution R / dx = 2 .. 16 (grid.nx = ny = 5 R/dx) at A0, to t = 2, for the same
      extrapolations; lost when the area error exceeds 10 % or the level set empties
 
@@ -47,7 +52,7 @@ one is stable; sweep c: the range of stable ratios around 1, "lo..hi").
 Then (--figure yes|only) stability_failures.png: one run just past each limit found
 (SNAPSHOTS), the state a health check refused (frame_failed.vti) or the frame of the event.
 
-Usage: python3 bench/stability.py [--quick] [--bin build/refmap] [--out results] [--jobs 2]
+The area drift is that of every solid. Usage: python3 bench/stability.py [--quick] [--bin build/refmap] [--out results] [--jobs 2]
                                   [--sweeps a,b,c,d,e] [--figure yes|no|only]
 Writes <out>/stability.csv, <out>/stability_limits.csv, <out>/stability_<sweep>.png and
 <out>/stability_failures.png; the raw
@@ -121,6 +126,12 @@ def stretch_from_sigma(sig, mu):
 
 
 # ------------------------------------------------------------------ classification
+def min_gap(d):
+    """Per row, the smallest gap of any solid to a wall or another solid."""
+    cols = [c for c in d if re.fullmatch(r"solid\d+_gap_(wall|solid)", c)]
+    return np.min([d[c] for c in cols], axis=0)
+
+
 def classify(job):
     """(outcome, t_event, step_event, measure, value, cause) from the run's own records."""
     rc, d = job["rc"], job["diag"]
@@ -134,6 +145,7 @@ def classify(job):
                  "energy blow-up" if "kinetic energy grew" in cause or "collapsed" in cause else
                  "non-finite" if "non-finite" in cause else
                  "projection failed" if "face divergence" in cause else
+                 "velocity solve failed" if "not positive definite" in cause else
                  "solid vanished" if "vanish" in cause else
                  "reached side" if "side" in cause else
                  "rejected at start" if rc == 2 else "other")
@@ -153,7 +165,8 @@ def classify(job):
             return ("inaccurate", t[k], int(step[k]), "area error > 10 % (lost)" if lost else "area error",
                     float(err.max()), "")
         return "stable", float("nan"), 0, "area error", float(err.max()), ""
-    drift = np.abs(area - area[0]) / area[0]
+    # area drift of every solid (two in the solid-solid contact runs of sweep d)
+    drift = np.max([np.abs(d[c] - d[c][0]) / d[c][0] for c in d if re.fullmatch(r"solid\d+_area", c)], axis=0)
     # the first row that breaks each bound: (row, measure, its largest value)
     bad = []
     if np.any(drift > 0.01):
@@ -165,7 +178,7 @@ def classify(job):
         if np.any(rise > 0.01):
             bad.append((int(np.argmax(rise > 0.01)), "energy rise", float(rise.max())))
     if job["sweep"] == "d":  # the zero level set crossed the wall (or another solid)
-        gap = np.minimum(d["solid0_gap_wall"], d["solid0_gap_solid"]) / job["dx"]
+        gap = min_gap(d) / job["dx"]
         if np.any(gap < 0.0):
             bad.append((int(np.argmax(gap < 0.0)), "overlap (gap/dx < 0)", float(gap.min())))
     if job["sweep"] == "c":  # the pressure solve must reach its tolerance every step
@@ -177,7 +190,7 @@ def classify(job):
         k, meas, val = min(bad, key=lambda b: b[0])
         return "inaccurate", t[k], int(step[k]), meas, val, ""
     if job["sweep"] == "d":
-        gap = np.minimum(d["solid0_gap_wall"], d["solid0_gap_solid"]) / job["dx"]
+        gap = min_gap(d) / job["dx"]
         return "stable", float("nan"), 0, "gap/dx", float(gap.min()), ""
     return "stable", float("nan"), 0, "area drift", float(drift.max()), ""
 
@@ -250,7 +263,35 @@ def jobs_a(quick):
                                 sets=method_sets(s, c, x) + ["grid.nx=32", "grid.ny=32", "time.end=100",
                                                              "time.max_steps=400", "output.vtk=false",
                                                              f"solid.0.mu_s={mu:g}", f"solids.solid_cfl={p:g}"]))
+    # the semi-implicit solid stress (issue 14, docs/implicit.md) has no solid time-step limit:
+    # dt comes from advection and time.dt_max only, so P is imposed as dt_max = P dx /
+    # sqrt(2 mu_s / rho_s) (where the advective limit binds first, p_effective records the P
+    # actually used); k = 0.5 is the default, k = 0.1 is below the 1-D stability bound 1/4 and
+    # k = 2 damps more
+    ks, ps_si = ([0.5], [0.5, 1, 2, 4, 16, 64]) if quick else \
+        ([0.5, 0.1, 2], [0.25, 0.5, 0.75, 1, 1.5, 2, 4, 8, 16, 32, 64, 128])
+    for k in ks:
+        name = semi_name(k)
+        for mu in stiff:
+            for p in ps_si:
+                dt_max = p * (1.0 / 32) / math.sqrt(2.0 * mu)
+                out.append(dict(sweep="a", method=name, stress_discretisation="cell", conservative=True,
+                                xi_advection="vanleer", extrapolation="lsq", lsq_radius=2.83,
+                                param="solid_cfl", value=p, param2="mu_s/rho_s", value2=mu, mu_s=mu,
+                                tag=f"a/semi_k{k:g}_mu{mu:g}_P{p:g}",
+                                sets=semi_sets(k) + ["grid.nx=32", "grid.ny=32", "time.end=100",
+                                                     "time.max_steps=400", "output.vtk=false",
+                                                     f"solid.0.mu_s={mu:g}", f"time.dt_max={dt_max!r}"]))
     return out
+
+
+def semi_name(k):
+    return f"semi-implicit k={k:g} (cell/cons/vanleer)"
+
+
+def semi_sets(k=0.5):
+    """The semi-implicit method of docs/implicit.md: implicit viscosity and solid stress."""
+    return ['time.viscous="implicit"', 'time.solid_stress="semi_implicit"', f"time.solid_implicit_k={k:g}"]
 
 
 def jobs_b(quick):
@@ -263,6 +304,13 @@ def jobs_b(quick):
                             value=a, tag=f"b/{name.replace(' ', '_').replace('=', '')}_A{a}",
                             sets=extrap_sets(ex, r, cons) + ["grid.nx=64", "grid.ny=64", "time.end=2.0",
                                                              "output.vtk=false", f"initial.amplitude={A0 * a!r}"]))
+    # the semi-implicit method with lsq 2.83: the same flows at its own (advective) time step
+    for a in amps:
+        out.append(dict(sweep="b", method="semi-implicit k=0.5 (lsq r=2.83)", stress_discretisation="cell",
+                        conservative=True, xi_advection="vanleer", extrapolation="lsq", lsq_radius=2.83,
+                        param="amplitude/A0", value=a, tag=f"b/semi_A{a}",
+                        sets=semi_sets() + ["grid.nx=64", "grid.ny=64", "time.end=2.0", "output.vtk=false",
+                                            f"initial.amplitude={A0 * a!r}"]))
     return out
 
 
@@ -327,6 +375,29 @@ def jobs_d(quick):
                         extrapolation="lsq", lsq_radius=2.83, param="contact.stiffness", value=k, dx=1 / 48,
                         nx=48, mu_s=100.0, rho_s=2.0, tag=f"d/stiff_{k:g}",
                         sets=base + ["contact.velocity_scale=1.5", "solid.0.v=-3", f"contact.stiffness={k:g}"]))
+    # solid-solid: the scene's disc and a copy of it (added by --set) side by side, gap 0.1,
+    # launched head-on at each other at V each (closing speed 2 V) with the same contact
+    # strength; to t = 0.3 (the contact is over before either disc can reach a side wall)
+    speeds_ss = [0.75, 1.5, 3, 6] if quick else [0.75, 1.5, 2, 3, 4, 6, 8, 12]
+    stiffs_ss = [1, 20, 2000] if quick else [0.1, 1, 5, 20, 80, 400, 2000]
+
+    def pair(v):
+        return ["grid.nx=48", "grid.ny=48", "time.end=0.3", "output.vtk=false", "contact.velocity_scale=1.5",
+                "solid.0.center=[0.3, 0.5]", "solid.0.v=0.0", f"solid.0.u={v:g}",
+                'solid.1.name="disc2"', 'solid.1.shape="circle"', "solid.1.center=[0.7, 0.5]",
+                "solid.1.radius=0.15", "solid.1.mu_s=100.0", "solid.1.density=2.0", "solid.1.viscosity=0.0",
+                f"solid.1.u={-v:g}", "solid.1.v=0.0"]
+    for v in speeds_ss:
+        out.append(dict(sweep="d", scene="wall_microgravity", method="solid-solid: speed V each (stiffness 20)",
+                        stress_discretisation="cell", conservative=True, xi_advection="vanleer",
+                        extrapolation="lsq", lsq_radius=2.83, param="impact speed V", value=v, dx=1 / 48,
+                        nx=48, mu_s=100.0, rho_s=2.0, tag=f"d/pair_speed_{v:g}", sets=pair(v)))
+    for k in stiffs_ss:
+        out.append(dict(sweep="d", scene="wall_microgravity", method="solid-solid: contact stiffness (V = 3 each)",
+                        stress_discretisation="cell", conservative=True, xi_advection="vanleer",
+                        extrapolation="lsq", lsq_radius=2.83, param="contact.stiffness", value=k, dx=1 / 48,
+                        nx=48, mu_s=100.0, rho_s=2.0, tag=f"d/pair_stiff_{k:g}",
+                        sets=pair(3) + [f"contact.stiffness={k:g}"]))
     return out
 
 
@@ -357,7 +428,7 @@ def limits(rows):
                             first_failure=" / ".join(f"{b['value']:g}" for b in fails),
                             failure_outcome=" / ".join(b["outcome"] for b in fails),
                             failure_measure=" / ".join(b["measure"] for b in fails),
-                            stretch_at_failure=""))
+                            stretch_at_failure="", p_effective_at_limit=""))
             continue
         if sw == "e" or (sw == "d" and rs[0]["param"] == "contact.stiffness"):
             # smallest value from which every larger one is stable (finer grid, stiffer contact)
@@ -379,7 +450,11 @@ def limits(rows):
                         first_failure=first_bad["value"] if first_bad else "",
                         failure_outcome=first_bad["outcome"] if first_bad else "",
                         failure_measure=first_bad["measure"] if first_bad else "",
-                        stretch_at_failure=first_bad["max_stretch"] if first_bad else ""))
+                        stretch_at_failure=first_bad["max_stretch"] if first_bad else "",
+                        # sweep a: the P of the first step actually taken at the limit (below the swept
+                        # value where the advective limit binds first, the semi-implicit runs at large P)
+                        p_effective_at_limit=next((r["p_effective"] for r in rs if lim is not None and
+                                                   r["value"] == lim), "") if sw == "a" else ""))
     return out
 
 
@@ -407,6 +482,10 @@ def chart(rows, lims, sweep, path, title, xlabel, logx=False, by_value2=False):
             sel = [r for r in rs if r["method"] == m and r["value2"] == v2]
             for r in sel:
                 ax.scatter(float(r["value"]), k, c=COLOURS[r["outcome"]], s=45, zorder=3)
+                if sweep == "a" and r["p_effective"] != "" and float(r["p_effective"]) < 0.95 * float(r["value"]):
+                    # the advective limit bound first: the P actually used
+                    ax.annotate(f"{float(r['p_effective']):.2g}", (float(r["value"]), k), fontsize=5,
+                                xytext=(0, 6), textcoords="offset points", ha="center")
                 if sweep == "b" and r["outcome"] != "stable" and r["max_stretch"] != "":
                     ax.annotate(f"{float(r['max_stretch']):.1f}", (float(r["value"]), k), fontsize=6,
                                 xytext=(0, 6), textcoords="offset points", ha="center")
@@ -427,7 +506,7 @@ def chart(rows, lims, sweep, path, title, xlabel, logx=False, by_value2=False):
     panels[0][0].scatter([], [], marker="s", facecolors="none", edgecolors="k", label="limit (largest stable)")
     fig.legend(loc="lower center", ncol=5, fontsize=7)
     fig.suptitle(title, fontsize=10)
-    fig.tight_layout(rect=(0, 0.07, 1, 0.95))
+    fig.tight_layout(rect=(0, 0.07, 1, 0.92))
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
@@ -455,6 +534,14 @@ SNAPSHOTS = [
       "output.interval=0.005"]),
     ("resolution: R/dx = 2, PDE extrapolation\n(t = 2)", "disc_tgv", "e",
      ["grid.nx=10", "grid.ny=10", "time.end=2.0", 'solids.extrapolation="pde"', "output.interval=0.1"]),
+    ("semi-implicit k = 0.5: P = 4,\nmu_s/rho_s = 100 (limit P = 1)", "disc_tgv", "a",
+     semi_sets() + ["grid.nx=32", "grid.ny=32", "time.end=2.5", "solid.0.mu_s=100",
+                    f"time.dt_max={4 / 32 / math.sqrt(200)!r}", "output.interval=0.1"]),
+    ("solid-solid: V = 6 each at the strength for 1.5\n(48^2, smallest gap)", "wall_microgravity", "d",
+     ["grid.nx=48", "grid.ny=48", "time.end=0.3", "contact.velocity_scale=1.5", "solid.0.center=[0.3, 0.5]",
+      "solid.0.v=0.0", "solid.0.u=6", 'solid.1.name="disc2"', 'solid.1.shape="circle"', "solid.1.center=[0.7, 0.5]",
+      "solid.1.radius=0.15", "solid.1.mu_s=100.0", "solid.1.density=2.0", "solid.1.viscosity=0.0",
+      "solid.1.u=-6", "solid.1.v=0.0", "output.interval=0.005"]),
 ]
 
 
@@ -498,10 +585,11 @@ def failure_figure(binary, raw, out_png, jobs):
             path = os.path.join(out, frames[-1])
             what = "last frame"
             if job["scene"] == "wall_microgravity" and d:
-                t_min = d["time"][int(np.argmin(d["solid0_gap_wall"]))]
+                gap = min_gap(d)
+                t_min = d["time"][int(np.argmin(gap))]
                 times = [Frame(os.path.join(out, f)).time for f in frames]
                 path = os.path.join(out, frames[int(np.argmin([abs(t - t_min) for t in times]))])
-                what = f"smallest gap {np.min(d['solid0_gap_wall']) / Frame(path).dx:.2f} dx"
+                what = f"smallest gap {np.min(gap) / Frame(path).dx:.2f} dx"
         fr = Frame(path)
         phi = fr.get("phi")
         det = det_grad_xi(fr.get("xi"), fr.dx)
@@ -584,7 +672,8 @@ def main():
         for l in lims:
             w.writerow({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in l.items()})
     chart(rows, lims, "a", os.path.join(args.out, "stability_solid_cfl.png"),
-          "solid time-step factor P (dt = P dx / sqrt(2 mu_s/rho_s)), disc_tgv 32^2, 400 steps",
+          "solid time-step factor P (dt = P dx / sqrt(2 mu_s/rho_s)), disc_tgv 32^2, 400 steps; semi-implicit: "
+          "dt_max from P\n(small labels: the P actually used where the advective limit binds first)",
           "P (solids.solid_cfl)", logx=True, by_value2=True)
     chart(rows, lims, "b", os.path.join(args.out, "stability_deformation.png"),
           "large deformation: disc_tgv 64^2 to t = 2, flow amplitude raised (labels: largest stretch before failure)",
@@ -593,7 +682,8 @@ def main():
           "density ratio: disc_tgv 48^2 to t = 1, mu_s/rho_s = 0.5 fixed (stable range boxed at its ends)",
           "rho_s / rho_f", logx=True)
     chart(rows, lims, "d", os.path.join(args.out, "stability_contact.png"),
-          "contact: wall_microgravity 48^2 to t = 0.5 (impact speed: largest stable; stiffness: smallest from which all are)",
+          "contact: wall_microgravity 48^2 to t = 0.5, solid-solid pair to t = 0.3\n"
+          "(impact speed: largest stable; stiffness: smallest from which all are)",
           "impact speed V  /  contact.stiffness", logx=True)
     chart(rows, lims, "e", os.path.join(args.out, "stability_resolution.png"),
           "resolution: disc_tgv to t = 2, cells across the disc's radius", "R / dx", logx=True)
