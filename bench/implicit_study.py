@@ -37,13 +37,24 @@ def run(args, scene, name, sets):
         info["wall_s"] = t.get("total", wall)
         info["implicit_share"] = t.get("implicit velocity", 0.0) / max(t.get("total", 1.0), 1e-12)
         info["poisson_share"] = t.get("poisson", 0.0) / max(t.get("total", 1.0), 1e-12)
+        info["implicit_per_poisson"] = t.get("implicit velocity", 0.0) / max(t.get("poisson", 0.0), 1e-12)
+    dg = info.get("diag", [])[1:]  # the rows of the steps (row 0: the initial state)
+    if dg and "implicit_iterations" in dg[0]:
+        info["implicit_iters"] = sum(float(r["implicit_iterations"]) for r in dg) / len(dg)
+    if dg:
+        info["poisson_iters"] = sum(float(r["poisson_iterations"]) for r in dg) / len(dg)
     return info
 
 
 def out_row(w, case, variant, info, **extra):
     r = {"case": case, "variant": variant, "ok": int(info["ok"]), "steps": info.get("steps", ""),
          "wall_s": "%.3f" % info["wall_s"], "implicit_share": "%.3f" % info.get("implicit_share", 0.0),
-         "poisson_share": "%.3f" % info.get("poisson_share", 0.0)}
+         "poisson_share": "%.3f" % info.get("poisson_share", 0.0),
+         # per step: cycles of the velocity solve (u + v) and of the pressure solve, and
+         # the velocity solve's time over the pressure solve's (timings.csv)
+         "implicit_iters": "%.2f" % info["implicit_iters"] if "implicit_iters" in info else "",
+         "poisson_iters": "%.2f" % info.get("poisson_iters", float("nan")),
+         "implicit_per_poisson": "%.2f" % info["implicit_per_poisson"] if info.get("implicit_share") else ""}
     for k, v in extra.items():
         r[k] = v if isinstance(v, str) else "%.5g" % v
     w.append(r)
@@ -92,6 +103,69 @@ def soft_disc(args, w):
         res[variant] = info
         c = info["diag"][-1] if info.get("diag") else {}
         out_row(w, "soft_disc_cavity_t1", variant, info, cx=float(c.get("solid0_cx", "nan")), cy=float(c.get("solid0_cy", "nan")))
+
+
+def implicit_tol(args, w):
+    """time.implicit_tol against the old setting (the pressure's solver.tol = 1e-10 of both
+    scenes): couette_elastic at 64 cells per unit and the shear wave at 4 and 10 times the
+    explicit step (the rows of couette() and shear() above, at each tolerance)."""
+    ref = list(csv.DictReader(open("tests/data/couette_elastic_startup.csv")))
+    for tol in ("1e-10", "1e-8", "1e-6", "1e-5", "1e-4", "1e-3"):
+        sets = ["grid.ny=128", "domain.lx=0.125", "domain.ly=2.0", "output.interval=0",
+                "time.implicit_tol=" + tol] + SEMI
+        info = run(args, "scenes/couette_elastic.toml", "couette_tol" + tol, sets)
+        err = float("nan")
+        if info["ok"]:
+            pr = [r for r in rows(os.path.join(info["dir"], "probe_u_profile.csv")) if r[0] != "x"][-41:]
+            err = max(abs(float(a[2]) - float(b["u_t4.8"])) for a, b in zip(pr, ref))
+        out_row(w, "tol_couette_elastic_64", "implicit_tol=" + tol, info, linf_error=err)
+        lim = 0.5 / 32
+        for m in (4, 10):
+            sets = ["time.dt=%.10g" % (m * lim), "output.interval=0", "time.solid_stress=semi_implicit",
+                    "time.implicit_tol=" + tol]
+            info = run(args, "scenes/shear_wave.toml", "shear_tol%s_%g" % (tol, m), sets)
+            err = float("nan")
+            if info["ok"]:
+                t = info["t"]
+                pr = [r for r in rows(os.path.join(info["dir"], "probe_u_profile.csv")) if r[0] != "x"][-32:]
+                err = max(abs(float(r[2]) - 0.25 * math.sin(2 * math.pi * float(r[1])) * math.cos(2 * math.pi * t))
+                          for r in pr) / 0.25
+            out_row(w, "tol_shear_wave_32", "dt=%gx implicit_tol=%s" % (m, tol), info, linf_error=err)
+
+
+def dist_to_polyline(p, poly):
+    best = float("inf")
+    for (ax, ay), (bx, by) in zip(poly, poly[1:]):
+        dx, dy = bx - ax, by - ay
+        l2 = dx * dx + dy * dy
+        s = min(max(((p[0] - ax) * dx + (p[1] - ay) * dy) / l2, 0.0), 1.0) if l2 > 0 else 0.0
+        best = min(best, math.hypot(p[0] - ax - s * dx, p[1] - ay - s * dy))
+    return best
+
+
+def soft_disc_full(args, w):
+    """The shipped scene (128^2, t = 8) explicit and with both implicit keys, back to back:
+    wall time, and the largest distance of the centroid (every step) to Sugiyama et al.'s
+    path (tests/test_soft_disc_cavity.cpp's criterion)."""
+    sug = [(float(r["x_centroid"]), float(r["y_centroid"]))
+           for r in csv.DictReader(open("tests/data/sugiyama2011_disc_centroid_path.csv"))]
+    explicit_path = []
+    for variant, extra in (("explicit", []), ("semi_implicit", SEMI)):
+        info = run(args, "scenes/soft_disc_cavity.toml", "soft_disc_full_" + variant,
+                   ["output.interval=0", "output.vtk=false"] + extra)
+        dg = info.get("diag", [])
+        path = [(float(r["time"]), float(r["solid0_cx"]), float(r["solid0_cy"])) for r in dg]
+        d = max((dist_to_polyline((x, y), sug) for _, x, y in path), default=float("nan"))
+        # the largest distance is at the start (the disc's centre against the digitised
+        # path's first point, 0.013); after t = 0.5 it is the path's own
+        d05 = max((dist_to_polyline((x, y), sug) for t, x, y in path if t >= 0.5), default=float("nan"))
+        if variant == "explicit":
+            explicit_path = [(x, y) for _, x, y in path]
+        dex = max((dist_to_polyline((x, y), explicit_path) for _, x, y in path), default=float("nan"))
+        out_row(w, "soft_disc_cavity_t8", variant, info, max_dist_sugiyama=d, max_dist_sugiyama_t05=d05,
+                max_dist_explicit_path=dex,
+                cx=float(dg[-1]["solid0_cx"]) if dg else float("nan"),
+                cy=float(dg[-1]["solid0_cy"]) if dg else float("nan"))
 
 
 def first_restitution(d):
@@ -146,15 +220,17 @@ def main():
     os.makedirs(args.raw, exist_ok=True)
     os.makedirs(args.out, exist_ok=True)
     # rows of the cases not run now are kept from the last results/implicit.csv
-    prefix = {"couette": "couette_elastic", "shear": "shear_wave", "soft_disc": "soft_disc",
-              "bounce": "bounce_stiff", "disc_tgv": "disc_tgv"}
+    prefix = {"couette": "couette_elastic", "shear": "shear_wave", "soft_disc": "soft_disc_cavity_t1",
+              "bounce": "bounce_stiff", "disc_tgv": "disc_tgv", "tol": "tol_",
+              "soft_disc_full": "soft_disc_cavity_t8"}
     path = os.path.join(args.out, "implicit.csv")
     w = []
     if os.path.exists(path):
         w = [r for r in csv.DictReader(open(path))
              if not any(r["case"].startswith(prefix[c]) for c in args.cases)]
     for c in args.cases:
-        {"couette": couette, "shear": shear, "soft_disc": soft_disc, "bounce": bounce, "disc_tgv": disc_tgv}[c](args, w)
+        {"couette": couette, "shear": shear, "soft_disc": soft_disc, "bounce": bounce, "disc_tgv": disc_tgv,
+         "tol": implicit_tol, "soft_disc_full": soft_disc_full}[c](args, w)
         keys = []
         for r in w:
             keys += [k for k in r if k not in keys]

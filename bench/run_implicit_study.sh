@@ -2,10 +2,12 @@
 # Explicit against semi-implicit stepping (issue 14; docs/implicit.md): one run each of
 # couette_elastic (64 cells per unit), the shear wave (scenes/shear_wave.toml) over dt,
 # soft_disc_cavity (to t = 1), bounce_stiff at mu_s = 1e3, 1e4, 1e5 (to t = 0.5; the explicit
-# small-dt run at 1e3) and disc_tgv. Each pair runs back to back (explicit, then
+# small-dt run at 1e3) and disc_tgv; the velocity solve's tolerance time.implicit_tol on
+# couette_elastic and the shear wave ("tol"); the full soft_disc_cavity run (128^2, t = 8) with
+# its centroid path against Sugiyama et al. ("soft_disc_full"). Each pair runs back to back (explicit, then
 # semi-implicit) with 1 thread, so the wall-time ratio is of the same machine load.
 #
-#   bash bench/run_implicit_study.sh          # ~15 min on a loaded 2-core machine
+#   bash bench/run_implicit_study.sh          # ~30 min on a loaded 2-core machine
 #   CASES="couette shear" bash bench/run_implicit_study.sh
 #
 # Knobs: BIN (refmap executable, default build/refmap), OUT (default results),
@@ -16,4 +18,4 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
 export OMP_NUM_THREADS=1
 exec nice python3 bench/implicit_study.py --bin "${BIN:-build/refmap}" --out "${OUT:-results}" \
-  --raw "${RAW:-/tmp/refmap_implicit_study}" --cases ${CASES:-couette shear soft_disc bounce disc_tgv}
+  --raw "${RAW:-/tmp/refmap_implicit_study}" --cases ${CASES:-couette shear soft_disc bounce disc_tgv tol soft_disc_full}

@@ -64,6 +64,13 @@ const SolidColumn kBodyColumns[] = {
 };
 // clang-format on
 
+/// Written last, only when the implicit velocity step is on (time.viscous = "implicit" or
+/// time.solid_stress = "semi_implicit"; solver/implicit_step.hpp), so the other scenes'
+/// files keep their columns: the multigrid cycles of its last solve (u and v summed).
+const Column kImplicitColumns[] = {
+    {"implicit_iterations", false, [](const RowState& r) { return double(r.sim.implicit_velocity()->last_iterations()); }},
+};
+
 bool is_body(const Simulation& sim, int k) { return sim.bodies() && sim.bodies()->rigid(k); }
 
 }  // namespace
@@ -79,6 +86,8 @@ std::vector<std::string> diagnostic_columns(const Simulation& sim) {
   for (int k = 0; k < nsolids; ++k)
     if (is_body(sim, k))
       for (const SolidColumn& col : kBodyColumns) c.push_back("solid" + std::to_string(k) + "_" + col.name);
+  if (sim.implicit_velocity())
+    for (const Column& col : kImplicitColumns) c.push_back(col.name);
   return c;
 }
 
@@ -93,6 +102,8 @@ std::vector<double> diagnostic_values(const Simulation& sim, double last_dt, dou
   for (int k = 0; k < nsolids; ++k)
     if (is_body(sim, k))
       for (const SolidColumn& col : kBodyColumns) v.push_back(col.value(r, k));
+  if (sim.implicit_velocity())
+    for (const Column& col : kImplicitColumns) v.push_back(col.value(r));
   return v;
 }
 

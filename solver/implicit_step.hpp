@@ -56,12 +56,15 @@ class ImplicitVelocity {
   Sides sides_;
   std::array<std::array<bool, 4>, 2> fixed_{};  ///< per component, per side: Dirichlet
   // per component: face coefficients, sink and the solver (the pressure solver's method
-  // and options, solver/poisson.hpp, with the sink term), set up anew every step (rho, m
-  // and dt change)
+  // and options with tol = time.implicit_tol, solver/poisson.hpp, with the sink term), set
+  // up anew every step (rho, m and dt change)
   std::array<Field, 2> bx_, by_, c_;
   std::array<std::unique_ptr<PoissonSolver>, 2> solver_;
   Field rhs_;
-  Field du_, dv_;  ///< the last step's changes: the initial guesses (warm start)
+  Field du_, dv_;    ///< the last step's changes (then this step's initial guesses)
+  Field du2_, dv2_;  ///< the changes of the step before (the guess extrapolates the two)
+  double dt1_ = 0.0, dt2_ = 0.0;  ///< the last two steps' dt
+  long steps_ = 0;
   int iterations_ = 0;
   double residual_ = 0.0;
   long total_iterations_ = 0;

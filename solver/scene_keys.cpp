@@ -194,6 +194,10 @@ std::vector<KeyDef> build_keys() {
                               "subtracted (first order in dt); no solid time-step limit (docs/implicit.md)"),
       num("time", "solid_implicit_k", d.solid_implicit_k, gt(0),
           "k of the semi-implicit solid stress: eta = k G dt (stable for k >= 1/4, docs/implicit.md)"),
+      num("time", "implicit_tol", d.implicit_tol, in(0, true, 1, true),
+          "relative residual of the implicit velocity solve (time.viscous = \"implicit\" or "
+          "solid_stress = \"semi_implicit\"): its unknown is the velocity change over a step, so it "
+          "needs far less than the pressure's solver.tol (docs/implicit.md)"),
 
       choice<FlowMode>("solver", "flow", d.flow,
                        "`\"solve\"`: the Navier-Stokes equations; `\"prescribed\"`: no flow solve, the initial "
