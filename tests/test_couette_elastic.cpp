@@ -13,6 +13,7 @@
 #include "solver/run.hpp"
 #include "solver/scene.hpp"
 #include "solver/simulation.hpp"
+#include "tests/fixtures/couette_layer.hpp"
 #include "tests/test_helpers.hpp"
 
 using namespace refmap;
@@ -21,22 +22,12 @@ using namespace refmap::testing;
 namespace {
 
 double couette_error(int cells_per_unit) {
-  // nx = 8 columns always (the flow is one-dimensional); lx follows dx
-  const double dx = 1.0 / cells_per_unit;
-  Config cfg = load_scene(scene_path("couette_elastic.toml"),
-                          {"grid.ny=" + std::to_string(2 * cells_per_unit),
-                           "domain.lx=" + std::to_string(8 * dx), "domain.ly=2.0"});
+  Config cfg = couette_layer_scene(cells_per_unit);
   Simulation sim(cfg);
   RunSummary r = run(sim, RunOptions::silent());
   EXPECT_FALSE(r.failed) << r.failure;
   EXPECT_NEAR(sim.time(), 4.8, 1e-9);
-  Csv ref = read_csv(data_path("couette_elastic_startup.csv"));
-  auto ys = ref.column("y");
-  auto us = ref.column("u_t4.8");
-  Field u = sim.named_field("u");
-  double linf = 0.0;
-  for (size_t k = 0; k < ys.size(); ++k)
-    linf = std::max(linf, std::abs(sample_bilinear(cfg.grid, u, 4 * dx, ys[k]) - us[k]));
+  const double linf = couette_layer_linf(cfg, sim);
   std::printf("[couette] %d cells per unit: %ld steps, L-inf error at t = 4.8: %.4e (wall speed 1)\n",
               cells_per_unit, sim.steps(), linf);
   return linf;

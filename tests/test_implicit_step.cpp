@@ -15,6 +15,7 @@
 #include "solver/scene.hpp"
 #include "solver/simulation.hpp"
 #include "tests/fixtures/scene_text.hpp"
+#include "tests/fixtures/couette_layer.hpp"
 #include "tests/test_helpers.hpp"
 
 using namespace refmap;
@@ -145,20 +146,11 @@ TEST(ImplicitCouette, ElasticLayerAtTheAdvectiveStep) {
   // only (cfl 0.5: 1/128), ~ 600 steps instead of ~ 33 000 explicit; L-inf within 2% of the
   // wall speed at t = 4.8 (the explicit run's criterion at 64 cells per unit)
   const int n = 32;
-  const double dx = 1.0 / n;
-  Config cfg = load_scene(scene_path("couette_elastic.toml"),
-                          {"grid.ny=" + std::to_string(2 * n), "domain.lx=" + std::to_string(8 * dx),
-                           "domain.ly=2.0", "time.viscous=implicit", "time.solid_stress=semi_implicit"});
+  Config cfg = couette_layer_scene(n, {"time.viscous=implicit", "time.solid_stress=semi_implicit"});
   Simulation sim(cfg);
   RunSummary r = run(sim, RunOptions::silent());
   EXPECT_FALSE(r.failed) << r.failure;
-  Csv ref = read_csv(data_path("couette_elastic_startup.csv"));
-  auto ys = ref.column("y");
-  auto us = ref.column("u_t4.8");
-  Field u = sim.named_field("u");
-  double linf = 0.0;
-  for (size_t k = 0; k < ys.size(); ++k)
-    linf = std::max(linf, std::abs(sample_bilinear(cfg.grid, u, 4 * dx, ys[k]) - us[k]));
+  const double linf = couette_layer_linf(cfg, sim);
   std::printf("[couette implicit] %d cells per unit: %ld steps, L-inf %.4e\n", n, sim.steps(), linf);
   EXPECT_LT(sim.steps(), 700);
   EXPECT_LE(linf, 0.02);
@@ -170,23 +162,15 @@ namespace {
 /// tol (empty: the default); returns L-inf against the exact profile at t = 4.8 and the
 /// field u, and the velocity solve's cycles over the run.
 double couette_implicit(int n, const std::string& tol, Field& u, long& cycles) {
-  const double dx = 1.0 / n;
-  std::vector<std::string> sets = {"grid.ny=" + std::to_string(2 * n), "domain.lx=" + std::to_string(8 * dx),
-                                   "domain.ly=2.0", "time.viscous=implicit", "time.solid_stress=semi_implicit"};
+  std::vector<std::string> sets = {"time.viscous=implicit", "time.solid_stress=semi_implicit"};
   if (!tol.empty()) sets.push_back("time.implicit_tol=" + tol);
-  Config cfg = load_scene(scene_path("couette_elastic.toml"), sets);
+  Config cfg = couette_layer_scene(n, sets);
   Simulation sim(cfg);
   RunSummary r = run(sim, RunOptions::silent());
   EXPECT_FALSE(r.failed) << r.failure;
-  Csv ref = read_csv(data_path("couette_elastic_startup.csv"));
-  auto ys = ref.column("y");
-  auto us = ref.column("u_t4.8");
   u = sim.u();
   cycles = sim.implicit_velocity()->total_iterations();
-  double linf = 0.0;
-  for (size_t k = 0; k < ys.size(); ++k)
-    linf = std::max(linf, std::abs(sample_bilinear(cfg.grid, sim.named_field("u"), 4 * dx, ys[k]) - us[k]));
-  return linf;
+  return couette_layer_linf(cfg, sim);
 }
 
 }  // namespace
