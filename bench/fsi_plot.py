@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Figure of a Turek & Hron run (bench/run_fsi.sh): the tip displacement u_x, u_y of A against
 time, the tip trajectory (u_y against u_x), and the force on the cylinder (solid0_fx, _fy).
-Usage (Debian's matplotlib): /usr/bin/python3 bench/fsi_plot.py RUN_DIR OUT.png"""
+Usage (Debian's matplotlib): /usr/bin/python3 bench/fsi_plot.py RUN_DIR OUT.png [T_MAX]
+(T_MAX: leave out later rows, e.g. the last steps of a run that failed)"""
 import csv
 import sys
 
@@ -20,6 +21,11 @@ def read(path):
 def main():
     run, out = sys.argv[1], sys.argv[2]
     m, d = read(run + "/markers.csv"), read(run + "/diagnostics.csv")
+    t_max = float(sys.argv[3]) if len(sys.argv) > 3 else float("inf")
+    for tab, key in ((m, "t"), (d, "time")):
+        keep = [k for k, t in enumerate(tab[key]) if t <= t_max]
+        for h in tab:
+            tab[h] = [tab[h][k] for k in keep]
     ux = [x - 0.6 for x in m["x"]]
     uy = [y - 0.2 for y in m["y"]]
     fig, ax = plt.subplots(1, 3, figsize=(14, 3.8))

@@ -29,7 +29,14 @@ using namespace refmap::testing;
 namespace {
 constexpr double kCdRef = 5.58, kDpRef = 0.1174;  // the centres of the published intervals
 constexpr double kQ = 0.5 * 1.0 * 0.2 * 0.2 * 0.1;  // rho U_mean^2 D / 2
-constexpr double kCdTol = 0.35, kDpTol = 0.012;  // PROVISIONAL
+// Tolerances from the measured convergence (results/cylinder_re20.csv, dt = 0.9278 dx):
+// the errors against the centre of the bounds at dx = 0.01 and 0.005 are
+//   c_D: -0.290, -0.246;   Delta p: -0.0098, -0.0054   (and -0.180, -0.0036 at dx = 0.0025).
+// The coarse-grid error falls slowly (two O(dx) effects of the forcing partly cancel,
+// results/README.md), so the test bounds the coarse-grid error by what was measured plus
+// the change of one refinement step, |e(dx)| + |e(dx) - e(dx/2)|: a change of the method
+// that moves the coarse result by more than a grid refinement does fails.
+constexpr double kCdTol = 0.290 + 0.044, kDpTol = 0.0098 + 0.0044;
 }  // namespace
 
 TEST(Cylinder, Re20DragAndPressureDifferenceOnCoarseGrid) {
