@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Turek & Hron (2006) FSI2 / FSI3 (issue 16 item 6; BENCHMARKS.md section 7d): runs
+# scenes/turek_hron_fsi{2,3}.toml and summarises the tip displacement and the forces with
+# bench/fsi_summary.py into results/turek_hron_fsi{2,3}.csv, the tip trajectory figure with
+# bench/fsi_plot.py.
+#
+#   bash bench/run_fsi.sh                 # both cases, to the scenes' end times (hours on 1 core)
+#   CASES=fsi3 END=4 bash bench/run_fsi.sh
+#
+# The tip comes from markers.csv, which refmap writes with each VTK frame (docs/tracers.md);
+# the scenes write a frame every 0.02 (FSI2) or 0.01 (FSI3), 25 or 19 samples per period of
+# the lift. To keep the disk use bounded
+# this script deletes the frames as they come, except every 50th (for snapshots).
+# Knobs: BIN (default build/refmap), RAW (run directories, default /tmp/refmap_fsi),
+# CASES (fsi2 fsi3), END (override time.end), THREADS (default 1), WINDOW (seconds at the end
+# of the run the statistics are taken over, default 2).
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$ROOT"
+BIN="${BIN:-build/refmap}"
+RAW="${RAW:-/tmp/refmap_fsi}"
+mkdir -p "$RAW" results
+export OMP_WAIT_POLICY=PASSIVE
+
+prune() {  # delete the frames of $1 except every 50th and the newest, while pid $2 runs
+  while kill -0 "$2" 2>/dev/null; do
+    sleep 5
+    ls "$1"/frame_*.vti 2>/dev/null | head -n -1 | while read -r f; do
+      n=$(basename "$f" .vti); n=$((10#${n#frame_}))
+      [ $((n % 50)) -ne 0 ] && rm -f "$f"
+    done
+  done
+}
+
+for c in ${CASES:-fsi2 fsi3}; do
+  out="$RAW/$c"
+  extra=()
+  [ -n "${END:-}" ] && extra+=(--set "time.end=$END")
+  OMP_NUM_THREADS="${THREADS:-1}" nice "$BIN" run "scenes/turek_hron_$c.toml" --out "$out" --quiet \
+    "${extra[@]}" > "$RAW/$c.log" 2>&1 &
+  pid=$!
+  prune "$out" "$pid" &
+  wait "$pid" || { tail "$RAW/$c.log" >&2; exit 1; }
+  wait
+  rho_s=$(grep -m1 '^density = ' <(sed -n '/^name = "flag"/,$p' "scenes/turek_hron_$c.toml") | awk '{print $3}')
+  /usr/bin/python3 bench/fsi_summary.py "$out" "${c^^}" "$rho_s" "${WINDOW:-2}" > "results/turek_hron_$c.csv"
+  /usr/bin/python3 bench/fsi_plot.py "$out" "results/figures/turek_hron_${c}_tip.png"
+  cat "results/turek_hron_$c.csv"
+done
