@@ -126,6 +126,7 @@ class Simulation {
   /// "contact": contact force on the faces of the new configuration.
   void compute_contact_force();
   /// Step 5, eq. (5.3), "face velocities": predicted face velocities and their divergence.
+  void face_accelerations();
   void predict_face_velocities(double dt);
   /// Step 6, eq. (5.4), "poisson": the pressure correction.
   void solve_pressure();
