@@ -40,4 +40,15 @@ inline double superbee_face(double quu, double qu, double qd) {
 void advect_rhs2(CView a, CView b, CView uf, CView vf, View rhs_a, View rhs_b, int nx, int ny,
                  double dx, FluxScheme scheme);
 
+/// As advect_rhs2 with central face values, except on the faces flagged nonzero in
+/// (lim_x, lim_y) (same shapes as uf, vf), which take the Superbee-limited value: the
+/// momentum at a density jump (flag_density_jump_faces), where the central flux of rho*u
+/// carries the heavy side's momentum into light cells undamped.
+void advect_rhs2_hybrid(CView a, CView b, CView uf, CView vf, CView lim_x, CView lim_y, View rhs_a,
+                        View rhs_b, int nx, int ny, double dx);
+
+/// lim = 1 on the faces whose four-cell flux stencil (two cells each side) sees a density
+/// difference in rho0 or rho1, else 0. rho ghosts (two layers) must be filled.
+void flag_density_jump_faces(CView rho0, CView rho1, View lim_x, View lim_y, int nx, int ny);
+
 }  // namespace refmap

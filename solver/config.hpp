@@ -42,6 +42,10 @@ enum class ViscousTime { Explicit, Implicit };
 /// Config::solid_time: the solid stress explicit, or explicit plus the stabilising implicit
 /// isotropic term eta = k G dt (1 - H) minus its explicit counterpart (docs/implicit.md).
 enum class SolidStressTime { Explicit, SemiImplicit };
+/// Config::jump_flux: the momentum's face values where the density is not one value in a
+/// face's stencil (a density jump), with central advection: Superbee-limited (default) or
+/// the same central values as elsewhere (docs/density_ratio.md).
+enum class JumpFlux { Superbee, Same };
 
 /// Boundary condition of one side. `velocity` is the tangential wall speed of a moving
 /// wall (u on bottom/top, v on left/right); the normal velocity at a wall is always 0.
@@ -189,6 +193,7 @@ struct Config {
 
   // numerics
   FluxScheme advection = FluxScheme::Central;  ///< momentum fluxes of eq. (5.1)
+  JumpFlux jump_flux = JumpFlux::Superbee;      ///< solver.density_jump_flux
   PoissonOptions poisson;
 
   // output

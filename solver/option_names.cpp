@@ -69,6 +69,11 @@ std::span<const OptionName<StressForm>> option_names(StressForm) {
   return span_of(n);
 }
 
+std::span<const OptionName<JumpFlux>> option_names(JumpFlux) {
+  static const OptionName<JumpFlux> n[] = {{JumpFlux::Superbee, "superbee"}, {JumpFlux::Same, "same"}};
+  return span_of(n);
+}
+
 std::span<const OptionName<ViscousTime>> option_names(ViscousTime) {
   static const OptionName<ViscousTime> n[] = {{ViscousTime::Explicit, "explicit"}, {ViscousTime::Implicit, "implicit"}};
   return span_of(n);

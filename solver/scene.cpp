@@ -791,6 +791,7 @@ void parse_solver(const Ctx& ctx, const Table& top, Config& cfg) {
   PoissonOptions& p = cfg.poisson;
   cfg.flow = s.option<FlowMode>("flow");
   cfg.advection = s.option<FluxScheme>("advection");
+  cfg.jump_flux = s.option<JumpFlux>("density_jump_flux");
   p.method = s.option<PoissonMethod>("poisson");
   p.cycle = s.option<MgCycle>("cycle");
   p.smoother = s.option<MgSmoother>("smoother");

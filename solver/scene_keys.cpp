@@ -204,6 +204,10 @@ std::vector<KeyDef> build_keys() {
                        "velocity (e.g. an expression of t) is imposed at every step and only the solids move"),
       choice<FluxScheme>("solver", "advection", d.advection,
                          "momentum advection scheme: second-order central or Superbee-limited upwind (TVD)"),
+      choice<JumpFlux>("solver", "density_jump_flux", d.jump_flux,
+                       "with `advection = \"central\"` and a density contrast: the momentum's face values where "
+                       "the density varies in the flux stencil, Superbee-limited (stable to ratio 100, "
+                       "docs/density_ratio.md) or `\"same\"` central ones (the paper's; blows up from ratio 100)"),
       choice<PoissonMethod>("solver", "poisson", dp.method,
                             "pressure solver: multigrid, conjugate gradients, or multigrid-preconditioned CG"),
       choice<MgCycle>("solver", "cycle", dp.cycle, "multigrid cycle"),

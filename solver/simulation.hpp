@@ -156,6 +156,8 @@ class Simulation {
   long nstep_ = 0;
 
   Field u_, v_, p_, rho_, rho_old_, mu_;   // cell-centred
+  Field jump_x_, jump_y_;                  // faces at a density jump (limited momentum flux)
+  bool density_contrast_ = false;          // some solid's density differs from the fluid's
   Field uf_, vf_;                          // face-normal velocities (exactly divergence-free)
   Field beta_x_, beta_y_;                  // 1/rho on faces for the Poisson problem
   Field dp_, rhs_;                         // pressure correction and Poisson right-hand side
