@@ -261,7 +261,7 @@ TEST(StabilityLimits, DensityRatioBelowLimitIsStable) {
   EXPECT_LE(o.area_drift, 0.01);
   EXPECT_LE(o.energy_rise, 0.01);
   EXPECT_LE(o.poisson_residual, 1e-9);  // the scene's solver.tol: the multigrid converged every step
-  const Outcome light = run_disc_tgv("rho_0.4", density_case(0.4));  // 0.8 of the limit 0.3 on the light side
+  const Outcome light = run_disc_tgv("rho_0.4", density_case(0.4));  // inside the light limit 0.3 (drift 0.8 %)
   EXPECT_FALSE(light.failed) << light.failure;
   EXPECT_LE(light.area_drift, 0.01);
   EXPECT_LE(light.energy_rise, 0.01);
