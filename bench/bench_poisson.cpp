@@ -19,7 +19,7 @@
 //                             like N, so 1024^2 and 2048^2 would dominate the run time).
 //                             The time is the whole solve (setup of the hierarchy excluded).
 //   PoissonContrast/<m>/<co>/N/R  the same solve for m in {V, F, mgpcg} with coarse
-//                             operator co in {average, harmonic} (solver.coarse_operator),
+//                             operator co in {average, harmonic, galerkin} (solver.coarse_operator),
 //                             N = 256 ... 2048 ("harmonic" only up to 512), R = 1, 1000
 //                             (bench/run_poisson_contrast.sh -> results/poisson_contrast.csv)
 //
@@ -310,7 +310,7 @@ const int registered = [] {
   for (int n : {256, 512, 1024, 2048})
     for (int ratio : {1, 1000})
       for (const char* m : {"V", "F", "mgpcg"})
-        for (const char* co : {"average", "harmonic"}) {
+        for (const char* co : {"average", "harmonic", "galerkin"}) {
           // "harmonic" needs hundreds of cycles at ratio 1000 from 1024^2 on: small grids only
           if (std::string(co) == "harmonic" && n > 512) continue;
           benchmark::RegisterBenchmark(
