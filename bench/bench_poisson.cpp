@@ -274,6 +274,21 @@ void BM_Solve(benchmark::State& state, std::string method, std::string coarse = 
   state.counters["threads"] = omp_get_max_threads();
 }
 
+/// MultigridSolver::setup alone (the hierarchy's coefficients; called every time step when
+/// beta changes) for each coarse operator: what "galerkin" adds per step.
+void BM_Setup(benchmark::State& state, std::string coarse) {
+  const int n = int(state.range(0));
+  const double ratio = double(state.range(1));
+  const auto p = poisson_problem::standard_problem(n, ratio);
+  PoissonOptions o;
+  o.coarse_operator = *parse_option<MgCoarseOperator>(coarse);
+  auto solver = make_poisson_solver(o);
+  solver->setup(p.op());  // storage allocated once, as in a run
+  for (auto _ : state) solver->setup(p.op());
+  state.counters["ns_per_unknown"] = benchmark::Counter(
+      double(n) * n * double(state.iterations()) * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 void grids(benchmark::internal::Benchmark* b) {
   for (int n : {128, 256, 512, 1024, 2048}) b->Arg(n);
   b->UseRealTime();
@@ -320,6 +335,11 @@ const int registered = [] {
               ->Unit(benchmark::kMillisecond)
               ->UseRealTime();
         }
+  for (const char* co : {"average", "galerkin"})
+    benchmark::RegisterBenchmark(("PoissonContrastSetup/" + std::string(co)).c_str(), BM_Setup, std::string(co))
+        ->ArgsProduct({{256, 512, 1024, 2048}, {1000}})
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
   return 0;
 }();
 

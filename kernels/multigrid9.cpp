@@ -3,6 +3,9 @@
 
 #include "kernels/loop.hpp"
 
+#include <algorithm>
+#include <utility>
+
 namespace refmap::mg {
 
 namespace {
@@ -37,6 +40,15 @@ struct Five {
       default: return 0.0;
     }
   }
+  void coefs(int i, int j, double c[9]) const {
+    const double w = s.tx(i, j), e = s.tx(i + 1, j), so = s.ty(i, j), no = s.ty(i, j + 1);
+    c[SW] = c[SE] = c[NW] = c[NE] = 0.0;
+    c[W] = w;
+    c[E] = e;
+    c[S] = so;
+    c[N] = no;
+    c[C] = -(w + e + so + no + (s.c.p ? s.c(i, j) : 0.0));
+  }
 };
 
 struct Nine {
@@ -46,6 +58,9 @@ struct Nine {
   explicit Nine(const Stencil9& st)
       : s(st), nx(st.nx), ny(st.ny), px(st.nbx->periodic), py(st.nby->periodic) {}
   double coef(int k, int i, int j) const { return s.coef(k, i, j); }
+  void coefs(int i, int j, double c[9]) const {
+    for (int k = 0; k < 9; ++k) c[k] = s.coef(k, i, j);
+  }
 };
 
 /// Weight of fine point (i, j) on coarse point (i/2 + a, j/2 + b), a, b in {0, 1}.
@@ -116,56 +131,80 @@ void build_q(const Op& A, int ncx, int ncy, std::vector<double>& q) {
   });
 }
 
+/// Position of the parents of fine index 2I + u (u in [-2, 2]) relative to I: fine 2I + u
+/// has parents at floor(u / 2) + {0, 1}.
+constexpr int kBase[5] = {-1, -1, 0, 0, 1};
+
 template <class Op>
 void rap(const Op& A, const Prolong9& P, std::vector<double>& ac) {
   const int ncx = P.ncx, ncy = P.ncy;
   const std::size_t nc = std::size_t(ncx) * std::size_t(ncy);
   ac.assign(9 * nc, 0.0);
   // gather per coarse point (I, J): the column P e_IJ lives on fine points 2I-1..2I+1 x
-  // 2J-1..2J+1; A widens it by one, and every fine point there has its parents within
-  // one coarse point of (I, J), so the product is 9-point
+  // 2J-1..2J+1; A widens it to the 5x5 window 2I-2..2I+2, whose points have their parents
+  // within one coarse point of (I, J), so the product is 9-point. Parents are kept
+  // relative to (I, J) (no wrap arithmetic: a periodic direction only wraps the loads).
   parallel_rows(0, ncy, 36 * ncx, [&](int J) {
+    double w4[5][5][4];  // window point (u, v): weights on parents base + (a, b), a + 2b
+    bool in[5][5];
     for (int I = 0; I < ncx; ++I) {
-      double acc[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-      for (int dj = -1; dj <= 1; ++dj) {
-        const int j = step(2 * J, dj, A.ny, A.py);
-        if (j < 0) continue;
-        for (int di = -1; di <= 1; ++di) {
-          const int i = step(2 * I, di, A.nx, A.px);
-          if (i < 0) continue;
-          const double p = pweight(P, i, j, di < 0, dj < 0);
+      for (int v = 0; v < 5; ++v) {
+        const int j = 2 * J + (v - 2);
+        const int jw = (j >= 0 && j < A.ny) ? j : (A.py ? (j < 0 ? j + A.ny : j - A.ny) : -1);
+        for (int u = 0; u < 5; ++u) {
+          const int i = 2 * I + (u - 2);
+          const int iw = (i >= 0 && i < A.nx) ? i : (A.px ? (i < 0 ? i + A.nx : i - A.nx) : -1);
+          double* w = w4[u][v];
+          in[u][v] = iw >= 0 && jw >= 0;
+          if (!in[u][v]) {
+            w[0] = w[1] = w[2] = w[3] = 0.0;
+            continue;
+          }
+          const int Ib = iw >> 1, Jb = jw >> 1;
+          const bool oi = iw & 1, oj = jw & 1;
+          if (!oi && !oj) {
+            w[0] = 1.0; w[1] = w[2] = w[3] = 0.0;
+          } else if (oi && !oj) {
+            w[0] = P.w(0, Ib, Jb); w[1] = P.w(1, Ib, Jb); w[2] = w[3] = 0.0;
+          } else if (!oi && oj) {
+            w[0] = P.w(2, Ib, Jb); w[2] = P.w(3, Ib, Jb); w[1] = w[3] = 0.0;
+          } else {
+            for (int k = 0; k < 4; ++k) w[k] = P.w(4 + k, Ib, Jb);
+          }
+        }
+      }
+      double acc[4][4] = {};  // offsets -1..2 (the +2 column/row only ever gets zeros)
+      for (int v = 1; v <= 3; ++v) {
+        for (int u = 1; u <= 3; ++u) {
+          if (!in[u][v]) continue;
+          // weight of this support point on (I, J) itself: parent (a, b) = -base
+          const double p = w4[u][v][-kBase[u] + 2 * -kBase[v]];
           if (p == 0.0) continue;
+          int i = 2 * I + (u - 2), j = 2 * J + (v - 2);
+          if (i < 0) i += A.nx; else if (i >= A.nx) i -= A.nx;
+          if (j < 0) j += A.ny; else if (j >= A.ny) j -= A.ny;
+          double c9[9];
+          A.coefs(i, j, c9);
           for (int ej = -1; ej <= 1; ++ej) {
-            const int j2 = step(j, ej, A.ny, A.py);
-            if (j2 < 0) continue;
+            const int v2 = v + ej;
             for (int ei = -1; ei <= 1; ++ei) {
-              const int i2 = step(i, ei, A.nx, A.px);
-              if (i2 < 0) continue;
-              const double av = A.coef((ej + 1) * 3 + ei + 1, i, j);
+              const double av = c9[(ej + 1) * 3 + ei + 1];
               if (av == 0.0) continue;
+              const int u2 = u + ei;
               const double pa = p * av;
-              for (int b = 0; b < 2; ++b) {
-                const int L = coarse_step(j2 >> 1, b, ncy, A.py);
-                if (L < 0) continue;
-                int oL = L - J;
-                if (oL > 1) oL -= ncy;
-                if (oL < -1) oL += ncy;
-                for (int a = 0; a < 2; ++a) {
-                  const int K = coarse_step(i2 >> 1, a, ncx, A.px);
-                  if (K < 0) continue;
-                  const double w = pweight(P, i2, j2, a, b);
-                  if (w == 0.0) continue;
-                  int oK = K - I;
-                  if (oK > 1) oK -= ncx;
-                  if (oK < -1) oK += ncx;
-                  acc[(oL + 1) * 3 + oK + 1] += pa * w;
-                }
-              }
+              const double* t = w4[u2][v2];
+              const int ox = kBase[u2] + 1, oy = kBase[v2] + 1;
+              acc[oy][ox] += pa * t[0];
+              acc[oy][ox + 1] += pa * t[1];
+              acc[oy + 1][ox] += pa * t[2];
+              acc[oy + 1][ox + 1] += pa * t[3];
             }
           }
         }
       }
-      for (int k = 0; k < 9; ++k) ac[std::size_t(k) * nc + std::size_t(I) + std::size_t(ncx) * J] = acc[k];
+      for (int oy = 0; oy < 3; ++oy)
+        for (int ox = 0; ox < 3; ++ox)
+          ac[std::size_t(oy * 3 + ox) * nc + std::size_t(I) + std::size_t(ncx) * J] = acc[oy][ox];
     }
   });
 }
@@ -205,33 +244,84 @@ void galerkin_product(const Stencil9& fine, const Prolong9& P, std::vector<doubl
   rap(Nine(fine), P, ac);
 }
 
+namespace {
+/// Gauss-Seidel update of the points i = ci, ci+2, ... of row j (every a_C != 0: checked
+/// when the Galerkin levels are built). The first and last points take their neighbours
+/// from the index tables (wrap or wall), the others directly, so that the inner loop has
+/// no branches.
+inline void relax_row(const Stencil9& s, View x, CView f, int j, int ci, double omega) {
+  const std::size_t n = s.n();
+  const int nx = s.nx;
+  const int jm = s.nby->m[j], jp = s.nby->p[j];
+  const double* a = s.a + std::size_t(nx) * j;
+  const double* __restrict aSW = a + SW * n;
+  const double* __restrict aS = a + S * n;
+  const double* __restrict aSE = a + SE * n;
+  const double* __restrict aW = a + W * n;
+  const double* __restrict aC = a + C * n;
+  const double* __restrict aE = a + E * n;
+  const double* __restrict aNW = a + NW * n;
+  const double* __restrict aN = a + N * n;
+  const double* __restrict aNE = a + NE * n;
+  double* __restrict xr = &x(0, j);
+  const double* __restrict xs = &x(0, jm);
+  const double* __restrict xn = &x(0, jp);
+  const double* __restrict fr = &f(0, j);
+  auto point = [&](int i, int l, int h) {
+    const double off = aSW[i] * xs[l] + aS[i] * xs[i] + aSE[i] * xs[h] + aW[i] * xr[l] +
+                       aE[i] * xr[h] + aNW[i] * xn[l] + aN[i] * xn[i] + aNE[i] * xn[h];
+    const double v = (fr[i] - off) / aC[i];
+    xr[i] += omega * (v - xr[i]);
+  };
+  int i = ci;
+  if (i == 0) {
+    point(0, s.nbx->m[0], s.nbx->p[0]);
+    i = 2;
+  }
+  for (; i < nx - 1; i += 2) point(i, i - 1, i + 1);
+  if (i == nx - 1) point(i, s.nbx->m[i], s.nbx->p[i]);
+}
+}  // namespace
+
 void smooth9(const Stencil9& s, View x, CView f, int sweeps, bool reverse, double omega,
              double* res2) {
-  const int nx = s.nx, ny = s.ny;
-  const std::size_t n = s.n();
-  const int* im = s.nbx->m.data();
-  const int* ip = s.nbx->p.data();
-  for (int sw = 0; sw < sweeps; ++sw) {
-    for (int cc = 0; cc < 4; ++cc) {
-      const int col = reverse ? 3 - cc : cc;
-      const int ci = col & 1, cj = col >> 1;
-      parallel_rows_on(s.threads, 0, (ny - cj + 1) / 2, [&](int r) {
-        const int j = cj + 2 * r;
-        const int jm = s.nby->m[j], jp = s.nby->p[j];
-        const double* a = s.a + std::size_t(nx) * j;
-        for (int i = ci; i < nx; i += 2) {
-          const double d = a[C * n + i];
-          if (d == 0.0) continue;
-          const int l = im[i], h = ip[i];
-          const double off = a[SW * n + i] * x(l, jm) + a[S * n + i] * x(i, jm) +
-                             a[SE * n + i] * x(h, jm) + a[W * n + i] * x(l, j) +
-                             a[E * n + i] * x(h, j) + a[NW * n + i] * x(l, jp) +
-                             a[N * n + i] * x(i, jp) + a[NE * n + i] * x(h, jp);
-          const double xn = (f(i, j) - off) / d;
-          x(i, j) += omega * (xn - x(i, j));
+  const int ny = s.ny;
+  // colours (ci, cj) = (c & 1, c >> 1) in the order 0, 1, 2, 3 (reverse: 3, 2, 1, 0)
+  const bool pipelined = s.threads <= 1 && !s.nby->periodic;
+  if (pipelined) {
+    // one pass over memory for all sweeps, the same iterates as sweep after sweep, colour
+    // by colour. Step k of a sweep relaxes row jf = c0 + 2k (both its colours), then row
+    // jf - 1 of the other parity, whose neighbours jf - 2 and jf are then final for this
+    // sweep (and row jf's neighbours jf +- 1 still old, as in the colour order). Sweep s
+    // trails sweep s - 1 by two steps: its step k reads rows jf - 2 .. jf + 1, which
+    // sweep s - 1 finished at its step k + 1.
+    const int c0 = reverse ? 1 : 0;  // parity of the rows relaxed first
+    const int a0 = reverse ? 1 : 0, a1 = 1 - a0;  // column parity order in a row
+    const int steps = (ny + 2 - c0 + 1) / 2;  // jf = c0, c0 + 2, ... < ny + 2
+    for (int t = 0; t < steps + 2 * (sweeps - 1); ++t) {
+      for (int sw = 0; sw < sweeps; ++sw) {
+        const int k = t - 2 * sw;
+        if (k < 0 || k >= steps) continue;
+        const int jf = c0 + 2 * k;
+        if (jf < ny) {
+          relax_row(s, x, f, jf, a0, omega);
+          relax_row(s, x, f, jf, a1, omega);
         }
-      });
+        const int js = jf - 1;
+        if (js >= 0 && js < ny) {
+          relax_row(s, x, f, js, a0, omega);
+          relax_row(s, x, f, js, a1, omega);
+        }
+      }
     }
+  } else {
+    for (int sw = 0; sw < sweeps; ++sw)
+      for (int cc = 0; cc < 4; ++cc) {
+        const int col = reverse ? 3 - cc : cc;
+        const int ci = col & 1, cj = col >> 1;
+        parallel_rows_on(s.threads, 0, (ny - cj + 1) / 2,
+                         [&](int r) { relax_row(s, x, f, cj + 2 * r, ci, omega); });
+      }
   }
   if (res2) *res2 = residual9(s, x, f, View{});
 }
@@ -260,48 +350,112 @@ double residual9(const Stencil9& s, CView x, CView f, View r) {
   });
 }
 
+namespace {
+/// Coarse row J of P^T r from the fine rows 2J - 1 (dn), 2J (mid), 2J + 1 (up); a null
+/// pointer for a row beyond a wall. fc(I, J) = sum over the fine points whose
+/// interpolation uses (I, J): (2I, 2J) injected, (2I +- 1, 2J) and (2I, 2J +- 1) edge
+/// weights, (2I +- 1, 2J +- 1) middle weights (blocks I - 1 and J - 1 for the points
+/// left of 2I and below 2J).
+inline void restrict_row(const Prolong9& P, int J, const double* dn, const double* mid,
+                         const double* up, View fc) {
+  const int ncx = P.ncx, ncy = P.ncy, nfx = P.nfx;
+  const int Jd = J > 0 ? J - 1 : ncy - 1;  // block below (periodic wrap)
+  for (int I = 0; I < ncx; ++I) {
+    const int i = 2 * I;
+    const bool has_rt = i + 1 < nfx;
+    const bool has_lt = I > 0 || P.px;
+    const int Il = I > 0 ? I - 1 : ncx - 1;
+    const int il = i > 0 ? i - 1 : nfx - 1;
+    double v = mid[i];
+    if (has_rt) v += P.w(0, I, J) * mid[i + 1];
+    if (has_lt) v += P.w(1, Il, J) * mid[il];
+    if (up) {
+      v += P.w(2, I, J) * up[i];
+      if (has_rt) v += P.w(4, I, J) * up[i + 1];
+      if (has_lt) v += P.w(5, Il, J) * up[il];
+    }
+    if (dn) {
+      v += P.w(3, I, Jd) * dn[i];
+      if (has_rt) v += P.w(6, I, Jd) * dn[i + 1];
+      if (has_lt) v += P.w(7, Il, Jd) * dn[il];
+    }
+    fc(I, J) = v;
+  }
+}
+
+/// Row j of the 5-point residual f - L x into out (x ghosts consistent).
+inline void residual_row5(const Stencil& s, CView x, CView f, int j, double* out) {
+  for (int i = 0; i < s.nx; ++i) {
+    const double xc = x(i, j);
+    double lx = s.tx(i, j) * (x(i - 1, j) - xc) + s.tx(i + 1, j) * (x(i + 1, j) - xc) +
+                s.ty(i, j) * (x(i, j - 1) - xc) + s.ty(i, j + 1) * (x(i, j + 1) - xc);
+    if (s.c.p) lx -= s.c(i, j) * xc;
+    out[i] = f(i, j) - lx;
+  }
+}
+}  // namespace
+
 void restrict9(const Prolong9& P, CView r, View fc, int threads) {
+  const int nfy = P.nfy;
   parallel_rows_on(threads, 0, P.ncy, [&](int J) {
-    for (int I = 0; I < P.ncx; ++I) {
-      double acc = 0.0;
-      for (int dj = -1; dj <= 1; ++dj) {
-        const int j = step(2 * J, dj, P.nfy, P.py);
-        if (j < 0) continue;
-        for (int di = -1; di <= 1; ++di) {
-          const int i = step(2 * I, di, P.nfx, P.px);
-          if (i < 0) continue;
-          const double w = pweight(P, i, j, di < 0, dj < 0);
-          if (w != 0.0) acc += w * r(i, j);
-        }
-      }
-      fc(I, J) = acc;
+    const int j = 2 * J;
+    const double* dn = (J > 0 || P.py) ? &r(0, j > 0 ? j - 1 : nfy - 1) : nullptr;
+    const double* up = j + 1 < nfy ? &r(0, j + 1) : nullptr;
+    restrict_row(P, J, dn, &r(0, j), up, fc);
+  });
+}
+
+void residual_restrict5(const Stencil& s, CView x, CView f, const Prolong9& P, View fc,
+                        double* buf, int threads) {
+  const int ncy = P.ncy, nfy = P.nfy, nx = s.nx;
+  const int nt = std::max(1, std::min(threads, ncy));
+  // one chunk of coarse rows per thread; its first fine row below is computed twice
+  parallel_rows_on(nt, 0, nt, [&](int t) {
+    const int J0 = int(long(ncy) * t / nt), J1 = int(long(ncy) * (t + 1) / nt);
+    double* rows[3] = {buf + std::size_t(3 * t) * nx, buf + std::size_t(3 * t + 1) * nx,
+                       buf + std::size_t(3 * t + 2) * nx};
+    double* dn = rows[0];
+    double* mid = rows[1];
+    double* up = rows[2];
+    bool have_dn = false;
+    if (J0 > 0 || P.py) {
+      residual_row5(s, x, f, J0 > 0 ? 2 * J0 - 1 : nfy - 1, dn);
+      have_dn = true;
+    }
+    for (int J = J0; J < J1; ++J) {
+      const int j = 2 * J;
+      residual_row5(s, x, f, j, mid);
+      const bool have_up = j + 1 < nfy;
+      if (have_up) residual_row5(s, x, f, j + 1, up);
+      restrict_row(P, J, have_dn ? dn : nullptr, mid, have_up ? up : nullptr, fc);
+      std::swap(dn, up);  // row 2J + 1 is the next coarse row's row below
+      have_dn = have_up;
     }
   });
 }
 
 void prolong9_add(const Prolong9& P, CView xc, View xf, int threads) {
+  const int ncx = P.ncx, ncy = P.ncy, nfx = P.nfx;
   parallel_rows_on(threads, 0, P.nfy, [&](int j) {
     const int J = j >> 1;
-    const int J1 = coarse_step(J, 1, P.ncy, P.py);
-    for (int i = 0; i < P.nfx; ++i) {
-      const int I = i >> 1;
-      double v = 0.0;
-      if (!(i & 1) && !(j & 1)) {
-        v = xc(I, J);
-      } else {
-        const int I1 = coarse_step(I, 1, P.ncx, P.px);
-        for (int b = 0; b < 2; ++b) {
-          const int L = b ? J1 : J;
-          if (L < 0) continue;
-          for (int a = 0; a < 2; ++a) {
-            const int K = a ? I1 : I;
-            if (K < 0) continue;
-            const double w = pweight(P, i, j, a, b);
-            if (w != 0.0) v += w * xc(K, L);
-          }
-        }
+    int J1 = coarse_step(J, 1, ncy, P.py);
+    if (J1 < 0) J1 = J;  // past a wall: the weights towards it are 0
+    auto I1 = [&](int I) { return I + 1 < ncx ? I + 1 : (P.px ? 0 : I); };
+    if (!(j & 1)) {
+      for (int I = 0; I < ncx; ++I) {
+        const double c0 = xc(I, J);
+        xf(2 * I, j) += c0;
+        if (2 * I + 1 < nfx) xf(2 * I + 1, j) += P.w(0, I, J) * c0 + P.w(1, I, J) * xc(I1(I), J);
       }
-      xf(i, j) += v;
+    } else {
+      for (int I = 0; I < ncx; ++I) {
+        const int Ir = I1(I);
+        const double c00 = xc(I, J), c01 = xc(I, J1);
+        xf(2 * I, j) += P.w(2, I, J) * c00 + P.w(3, I, J) * c01;
+        if (2 * I + 1 < nfx)
+          xf(2 * I + 1, j) += P.w(4, I, J) * c00 + P.w(5, I, J) * xc(Ir, J) + P.w(6, I, J) * c01 +
+                              P.w(7, I, J) * xc(Ir, J1);
+      }
     }
   });
 }

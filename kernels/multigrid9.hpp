@@ -93,6 +93,12 @@ double residual9(const Stencil9& s, CView x, CView f, View r);
 /// fc = P^T r (r on the fine level, any stencil).
 void restrict9(const Prolong9& P, CView r, View fc, int threads);
 
+/// fc = P^T (f - L x) for the finest 5-point operator s, fused: the fine residual is
+/// computed row by row into buf (3 * s.nx doubles per thread, `threads` of them) and
+/// restricted at once, never stored whole. x ghosts consistent.
+void residual_restrict5(const Stencil& s, CView x, CView f, const Prolong9& P, View fc,
+                        double* buf, int threads);
+
 /// xf += P xc (interior of xf only; the caller refreshes ghosts where needed).
 void prolong9_add(const Prolong9& P, CView xc, View xf, int threads);
 

@@ -30,7 +30,7 @@ class GalerkinLevels {
     mg::Neighbours1D nbx, nby;
     std::vector<double> a;  ///< 9-point operator, 9 planes (levels >= 1; level 0 only if coarsest)
     std::vector<double> q;  ///< prolongation from level + 1 (unused on the last level)
-    Field x, f, r;          ///< iterate, right-hand side (levels >= 1), residual
+    Field x, f, r;          ///< iterate, right-hand side, residual (levels >= 1)
     int threads = 1;
   };
 
@@ -62,6 +62,7 @@ class GalerkinLevels {
   void build_coarse_solver();
 
   std::vector<Level> levels_;
+  std::vector<double> rbuf_;  ///< fine residual rows of the fused restriction (3 per thread)
   bool sink_ = false, symmetric_ = false;
   int pre_ = 2, post_ = 2, coarse_cells_ = -1;
   double fine_omega_ = 1.0;
