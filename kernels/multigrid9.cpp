@@ -139,7 +139,7 @@ template <class Op>
 void rap(const Op& A, const Prolong9& P, std::vector<double>& ac) {
   const int ncx = P.ncx, ncy = P.ncy;
   const std::size_t nc = std::size_t(ncx) * std::size_t(ncy);
-  ac.assign(9 * nc, 0.0);
+  ac.resize(9 * nc);  // every entry is written below
   // gather per coarse point (I, J): the column P e_IJ lives on fine points 2I-1..2I+1 x
   // 2J-1..2J+1; A widens it to the 5x5 window 2I-2..2I+2, whose points have their parents
   // within one coarse point of (I, J), so the product is 9-point. Parents are kept
@@ -174,7 +174,10 @@ void rap(const Op& A, const Prolong9& P, std::vector<double>& ac) {
         }
       }
       double acc[4][4] = {};  // offsets -1..2 (the +2 column/row only ever gets zeros)
+      // fully unrolled (the offsets then are constants and acc lives in registers)
+#pragma GCC unroll 3
       for (int v = 1; v <= 3; ++v) {
+#pragma GCC unroll 3
         for (int u = 1; u <= 3; ++u) {
           if (!in[u][v]) continue;
           // weight of this support point on (I, J) itself: parent (a, b) = -base
@@ -185,11 +188,12 @@ void rap(const Op& A, const Prolong9& P, std::vector<double>& ac) {
           if (j < 0) j += A.ny; else if (j >= A.ny) j -= A.ny;
           double c9[9];
           A.coefs(i, j, c9);
+#pragma GCC unroll 3
           for (int ej = -1; ej <= 1; ++ej) {
             const int v2 = v + ej;
+#pragma GCC unroll 3
             for (int ei = -1; ei <= 1; ++ei) {
               const double av = c9[(ej + 1) * 3 + ei + 1];
-              if (av == 0.0) continue;
               const int u2 = u + ei;
               const double pa = p * av;
               const double* t = w4[u2][v2];
