@@ -24,6 +24,7 @@ inline int step(int i, int d, int n, bool periodic) {
 
 /// The finest level's 5-point operator as a 9-point one (corners 0).
 struct Five {
+  static constexpr bool kFivePoint = true;  ///< corner coefficients are 0
   const Stencil& s;
   int nx, ny;
   bool px, py;
@@ -52,6 +53,7 @@ struct Five {
 };
 
 struct Nine {
+  static constexpr bool kFivePoint = false;
   const Stencil9& s;
   int nx, ny;
   bool px, py;
@@ -84,12 +86,13 @@ inline int coarse_step(int I, int a, int nc, bool periodic) {
 template <class Op>
 void build_q(const Op& A, int ncx, int ncy, std::vector<double>& q) {
   const std::size_t nc = std::size_t(ncx) * std::size_t(ncy);
-  q.assign(8 * nc, 0.0);
+  q.resize(8 * nc);  // every entry is written below
   auto Q = [&](int k, int I, int J) -> double& { return q[std::size_t(k) * nc + std::size_t(I) + std::size_t(ncx) * J]; };
   // edge points: the operator collapsed across the line joining the two coarse points
   parallel_rows(0, ncy, 4 * ncx, [&](int J) {
     for (int I = 0; I < ncx; ++I) {
       int i = 2 * I + 1, j = 2 * J;
+      Q(0, I, J) = Q(1, I, J) = Q(2, I, J) = Q(3, I, J) = 0.0;  // a point that does not exist
       if (i < A.nx && j < A.ny) {
         const double d = A.coef(C, i, j) + A.coef(S, i, j) + A.coef(N, i, j);
         if (d != 0.0) {
@@ -111,6 +114,7 @@ void build_q(const Op& A, int ncx, int ncy, std::vector<double>& q) {
   // centre points: their own equation, the 8 neighbours interpolated
   parallel_rows(0, ncy, 4 * ncx, [&](int J) {
     const int j = 2 * J + 1;
+    for (int I = 0; I < ncx; ++I) Q(4, I, J) = Q(5, I, J) = Q(6, I, J) = Q(7, I, J) = 0.0;
     if (j >= A.ny) return;
     int J1 = coarse_step(J, 1, ncy, A.py);
     if (J1 < 0) J1 = J;  // past a wall: the coefficients towards it are 0
@@ -147,31 +151,44 @@ void rap(const Op& A, const Prolong9& P, std::vector<double>& ac) {
   parallel_rows(0, ncy, 36 * ncx, [&](int J) {
     double w4[5][5][4];  // window point (u, v): weights on parents base + (a, b), a + 2b
     bool in[5][5];
-    for (int I = 0; I < ncx; ++I) {
+    int jw[5];
+    for (int v = 0; v < 5; ++v) {
+      const int j = 2 * J + (v - 2);
+      jw[v] = (j >= 0 && j < A.ny) ? j : (A.py ? (j < 0 ? j + A.ny : j - A.ny) : -1);
+    }
+    // window column u at fine index i (wrapped, or -1 outside a wall)
+    auto fill_col = [&](int u, int i) {
+      const int iw = (i >= 0 && i < A.nx) ? i : (A.px ? (i < 0 ? i + A.nx : i - A.nx) : -1);
       for (int v = 0; v < 5; ++v) {
-        const int j = 2 * J + (v - 2);
-        const int jw = (j >= 0 && j < A.ny) ? j : (A.py ? (j < 0 ? j + A.ny : j - A.ny) : -1);
-        for (int u = 0; u < 5; ++u) {
-          const int i = 2 * I + (u - 2);
-          const int iw = (i >= 0 && i < A.nx) ? i : (A.px ? (i < 0 ? i + A.nx : i - A.nx) : -1);
-          double* w = w4[u][v];
-          in[u][v] = iw >= 0 && jw >= 0;
-          if (!in[u][v]) {
-            w[0] = w[1] = w[2] = w[3] = 0.0;
-            continue;
-          }
-          const int Ib = iw >> 1, Jb = jw >> 1;
-          const bool oi = iw & 1, oj = jw & 1;
-          if (!oi && !oj) {
-            w[0] = 1.0; w[1] = w[2] = w[3] = 0.0;
-          } else if (oi && !oj) {
-            w[0] = P.w(0, Ib, Jb); w[1] = P.w(1, Ib, Jb); w[2] = w[3] = 0.0;
-          } else if (!oi && oj) {
-            w[0] = P.w(2, Ib, Jb); w[2] = P.w(3, Ib, Jb); w[1] = w[3] = 0.0;
-          } else {
-            for (int k = 0; k < 4; ++k) w[k] = P.w(4 + k, Ib, Jb);
-          }
+        double* w = w4[u][v];
+        in[u][v] = iw >= 0 && jw[v] >= 0;
+        if (!in[u][v]) {
+          w[0] = w[1] = w[2] = w[3] = 0.0;
+          continue;
         }
+        const int Ib = iw >> 1, Jb = jw[v] >> 1;
+        const bool oi = iw & 1, oj = jw[v] & 1;
+        if (!oi && !oj) {
+          w[0] = 1.0; w[1] = w[2] = w[3] = 0.0;
+        } else if (oi && !oj) {
+          w[0] = P.w(0, Ib, Jb); w[1] = P.w(1, Ib, Jb); w[2] = w[3] = 0.0;
+        } else if (!oi && oj) {
+          w[0] = P.w(2, Ib, Jb); w[2] = P.w(3, Ib, Jb); w[1] = w[3] = 0.0;
+        } else {
+          for (int k = 0; k < 4; ++k) w[k] = P.w(4 + k, Ib, Jb);
+        }
+      }
+    };
+    for (int u = 0; u < 5; ++u) fill_col(u, u - 2);
+    for (int I = 0; I < ncx; ++I) {
+      if (I > 0) {  // slide the window by two fine columns
+        for (int u = 0; u < 3; ++u)
+          for (int v = 0; v < 5; ++v) {
+            for (int k = 0; k < 4; ++k) w4[u][v][k] = w4[u + 2][v][k];
+            in[u][v] = in[u + 2][v];
+          }
+        fill_col(3, 2 * I + 1);
+        fill_col(4, 2 * I + 2);
       }
       double acc[4][4] = {};  // offsets -1..2 (the +2 column/row only ever gets zeros)
       // fully unrolled (the offsets then are constants and acc lives in registers)
@@ -193,6 +210,9 @@ void rap(const Op& A, const Prolong9& P, std::vector<double>& ac) {
             const int v2 = v + ej;
 #pragma GCC unroll 3
             for (int ei = -1; ei <= 1; ++ei) {
+              if constexpr (Op::kFivePoint) {
+                if (ei != 0 && ej != 0) continue;
+              }
               const double av = c9[(ej + 1) * 3 + ei + 1];
               const int u2 = u + ei;
               const double pa = p * av;
