@@ -19,7 +19,7 @@
 //                             like N, so 1024^2 and 2048^2 would dominate the run time).
 //                             The time is the whole solve (setup of the hierarchy excluded).
 //   PoissonContrast/<m>/<co>/N/R  the same solve for m in {V, F, mgpcg} with coarse
-//                             operator co in {average, harmonic} (solver.coarse_operator),
+//                             operator co in {average, harmonic, galerkin} (solver.coarse_operator),
 //                             N = 256 ... 2048 ("harmonic" only up to 512), R = 1, 1000
 //                             (bench/run_poisson_contrast.sh -> results/poisson_contrast.csv)
 //
@@ -274,6 +274,21 @@ void BM_Solve(benchmark::State& state, std::string method, std::string coarse = 
   state.counters["threads"] = omp_get_max_threads();
 }
 
+/// MultigridSolver::setup alone (the hierarchy's coefficients; called every time step when
+/// beta changes) for each coarse operator: what "galerkin" adds per step.
+void BM_Setup(benchmark::State& state, std::string coarse) {
+  const int n = int(state.range(0));
+  const double ratio = double(state.range(1));
+  const auto p = poisson_problem::standard_problem(n, ratio);
+  PoissonOptions o;
+  o.coarse_operator = *parse_option<MgCoarseOperator>(coarse);
+  auto solver = make_poisson_solver(o);
+  solver->setup(p.op());  // storage allocated once, as in a run
+  for (auto _ : state) solver->setup(p.op());
+  state.counters["ns_per_unknown"] = benchmark::Counter(
+      double(n) * n * double(state.iterations()) * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 void grids(benchmark::internal::Benchmark* b) {
   for (int n : {128, 256, 512, 1024, 2048}) b->Arg(n);
   b->UseRealTime();
@@ -310,7 +325,7 @@ const int registered = [] {
   for (int n : {256, 512, 1024, 2048})
     for (int ratio : {1, 1000})
       for (const char* m : {"V", "F", "mgpcg"})
-        for (const char* co : {"average", "harmonic"}) {
+        for (const char* co : {"average", "harmonic", "galerkin"}) {
           // "harmonic" needs hundreds of cycles at ratio 1000 from 1024^2 on: small grids only
           if (std::string(co) == "harmonic" && n > 512) continue;
           benchmark::RegisterBenchmark(
@@ -320,6 +335,11 @@ const int registered = [] {
               ->Unit(benchmark::kMillisecond)
               ->UseRealTime();
         }
+  for (const char* co : {"average", "galerkin"})
+    benchmark::RegisterBenchmark(("PoissonContrastSetup/" + std::string(co)).c_str(), BM_Setup, std::string(co))
+        ->ArgsProduct({{256, 512, 1024, 2048}, {1000}})
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
   return 0;
 }();
 

@@ -10,6 +10,13 @@
 #   bash bench/run_poisson_contrast.sh            # BUILD=build (needs -DREFMAP_BUILD_BENCH=ON)
 #   THREADS=1 REPS=5 bash bench/run_poisson_contrast.sh
 #   SUMMARISE_ONLY=1 bash bench/run_poisson_contrast.sh   # the CSV from the existing JSON
+#   FILTER=galerkin TAG=_galerkin THREADS=1 bash bench/run_poisson_contrast.sh
+#       # only the cases matching FILTER (a regex on the name after "PoissonContrast/"), into
+#       # results/raw/poisson_contrast_<t>t<TAG>.json; the CSV is made from every
+#       # poisson_contrast_<t>t*.json of the thread counts in THREADS, in name order, a later
+#       # file's row replacing an earlier one of the same case
+#   The setup cost of each coarse operator (not in the CSV; quoted in results/README.md):
+#   OMP_NUM_THREADS=1 build/bench/refmap_bench --benchmark_filter='^PoissonContrastSetup/' 
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
@@ -17,23 +24,26 @@ BUILD="${BUILD:-build}"
 BIN="$BUILD/bench/refmap_bench"
 THREADS="${THREADS:-1 2}"
 REPS="${REPS:-1}"
+FILTER="${FILTER:-}"
+TAG="${TAG:-}"
 RAW=results/raw
 mkdir -p "$RAW"
 [[ -x "$BIN" ]] || cmake --build "$BUILD" -j2 --target refmap_bench
 for t in $THREADS; do
   [[ "${SUMMARISE_ONLY:-0}" == 1 ]] && break
   echo "== $t thread(s), load: $(cut -d' ' -f1-3 /proc/loadavg)"
-  OMP_NUM_THREADS=$t "$BIN" --benchmark_filter='^PoissonContrast/' \
+  OMP_NUM_THREADS=$t "$BIN" --benchmark_filter="^PoissonContrast/.*${FILTER}" \
     --benchmark_repetitions="$REPS" --benchmark_report_aggregates_only=true \
     --benchmark_min_time=0.01 --benchmark_format=json --benchmark_out_format=json \
-    --benchmark_out="$RAW/poisson_contrast_${t}t.json" >/dev/null
+    --benchmark_out="$RAW/poisson_contrast_${t}t${TAG}.json" >/dev/null
 done
 python3 - "$RAW" $THREADS <<'PY'
-import json, sys
+import glob, json, sys
 raw, threads = sys.argv[1], sys.argv[2:]
 rows = []
 for t in threads:
-    d = json.load(open(f"{raw}/poisson_contrast_{t}t.json"))
+  for path in sorted(glob.glob(f"{raw}/poisson_contrast_{t}t*.json")):
+    d = json.load(open(path))
     bs = d["benchmarks"]
     medians = [b for b in bs if b.get("aggregate_name") == "median"]
     for b in medians or bs:  # REPS=1: no aggregates, the single run
@@ -47,6 +57,7 @@ for t in threads:
         # JSON, so json.load keeps the counter (cycles / CG steps)
         rows.append((m, co, int(n), int(r), int(t), ms / 1e3, cpu / 1e3, round(b["iterations"]),
                      b["rel_residual"], b["ns_per_unknown"]))
+rows = list({r[:5]: r for r in rows}.values())  # a later file's row replaces an earlier one
 load = open("/proc/loadavg").read().split()[:3]
 with open("results/poisson_contrast.csv", "w") as f:
     f.write(f"# bash bench/run_poisson_contrast.sh; shared machine, load at the end {' '.join(load)}\n")

@@ -109,7 +109,8 @@ std::span<const OptionName<MgSmoother>> option_names(MgSmoother) {
 
 std::span<const OptionName<MgCoarseOperator>> option_names(MgCoarseOperator) {
   static const OptionName<MgCoarseOperator> n[] = {{MgCoarseOperator::Average, "average"},
-                                                   {MgCoarseOperator::Harmonic, "harmonic"}};
+                                                   {MgCoarseOperator::Harmonic, "harmonic"},
+                                                   {MgCoarseOperator::Galerkin, "galerkin"}};
   return span_of(n);
 }
 

@@ -51,8 +51,9 @@ enum class MgSmoother { Rbgs, Jacobi };
 /// Multigrid coarse-face coefficients (solver/poisson_multigrid.hpp): the restriction-
 /// weighted mean of the fine beta ("average"), or the fine faces in series normal to the
 /// coarse face and the fine strips in parallel ("harmonic": keeps the flux across a density
-/// jump).
-enum class MgCoarseOperator { Average, Harmonic };
+/// jump), or the Galerkin operator P^T L P with an operator-dependent prolongation
+/// ("galerkin": 9-point coarse stencils, solver/multigrid_galerkin.hpp).
+enum class MgCoarseOperator { Average, Harmonic, Galerkin };
 
 struct PoissonOptions {
   PoissonMethod method = PoissonMethod::Multigrid;

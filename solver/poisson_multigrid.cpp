@@ -349,6 +349,7 @@ void MultigridHierarchy::update_threads() {
   const int mt = std::max(1, std::min(omp_get_max_threads(), scratch_.nthreads));
   for (Level& L : levels_)
     L.threads = std::size_t(L.nx) * std::size_t(L.ny) >= min_parallel_cells() ? mt : 1;
+  if (galerkin_) galerkin_->update_threads();
 }
 
 void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& opt,
@@ -359,6 +360,9 @@ void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& 
   if (opt.coarse_cells < 1) throw std::invalid_argument("multigrid: coarse_cells must be >= 1");
   jacobi_ = opt.smoother == MgSmoother::Jacobi;
   coarse_op_ = opt.coarse_operator;
+  const bool galerkin = coarse_op_ == MgCoarseOperator::Galerkin;
+  if (galerkin && jacobi_)
+    throw std::invalid_argument("multigrid: coarse_operator \"galerkin\" needs the rbgs smoother");
   pre_ = opt.pre_smooth;
   post_ = opt.post_smooth;
   omega_ = opt.jacobi_omega;
@@ -370,8 +374,10 @@ void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& 
   const bool reuse = !levels_.empty() && levels_[0].nx == nx && levels_[0].ny == ny &&
                      levels_[0].sides == sides &&
                      coarse_cells_ == opt.coarse_cells &&
-                     scratch_.nthreads >= omp_get_max_threads();
+                     scratch_.nthreads >= omp_get_max_threads() &&
+                     (built_op_ == MgCoarseOperator::Galerkin) == galerkin;
   coarse_cells_ = opt.coarse_cells;
+  built_op_ = coarse_op_;
   if (!reuse) {
     levels_.clear();
     levels_.reserve(32);
@@ -390,6 +396,7 @@ void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& 
     levels_.push_back(std::move(L0));
     for (;;) {
       Level& F = levels_.back();
+      if (galerkin) break;  // the coarse levels live in galerkin_
       if (std::size_t(F.nx) * F.ny <= std::size_t(coarse_cells_) || F.nx < 4 || F.ny < 4) break;
       Level C;
       C.sides = sides;
@@ -419,10 +426,18 @@ void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& 
     scratch_.nthreads = nt;
   }
   sink_ = build_fine_operator(op, levels_[0].tx, levels_[0].ty, levels_[0].invd, levels_[0].c);
+  if (galerkin) {
+    update_threads();
+    if (!galerkin_) galerkin_ = std::make_unique<GalerkinLevels>();
+    galerkin_->setup(stencil(0), sink_, coarse_cells_, pre_, post_, rb_omega_, symmetric_);
+    return;
+  }
+  galerkin_.reset();
   for (std::size_t l = 1; l < levels_.size(); ++l) {
     switch (coarse_op_) {
       case MgCoarseOperator::Average: coarsen_operator(levels_[l - 1], levels_[l]); break;
       case MgCoarseOperator::Harmonic: coarsen_operator_harmonic(levels_[l - 1], levels_[l]); break;
+      case MgCoarseOperator::Galerkin: break;  // handled above
     }
     if (sink_) coarsen_sink(levels_[l - 1], levels_[l]);
     mg::Stencil s = stencil(int(l));
@@ -598,6 +613,10 @@ void MultigridHierarchy::prolong_post_smooth(int l, View x, CView f, double* res
 }
 
 void MultigridHierarchy::cycle(int l, View x, CView f, bool f_cycle, double* res2) {
+  if (galerkin_) {
+    galerkin_->cycle(stencil(0), x, f, f_cycle, res2);
+    return;
+  }
   if (l == num_levels() - 1) {
     coarse_solve(l, x, f);
     if (res2) *res2 = mg::residual(stencil(l), x, f, View{});

@@ -20,6 +20,8 @@
 // coarse face covers and the next fine face on either side), T_c = beta_c * len / dist.
 // (Averaging the two covered faces only was measured: V-cycles then diverge at density
 // ratio 1000 on 1024^2, and with the Jacobi smoother already on 256^2.)
+// "galerkin" (opt-in) replaces all coarse levels by Galerkin operators P^T L P with an
+// operator-dependent prolongation (solver/multigrid_galerkin.hpp; 9-point coarse stencils).
 // This is coarse_operator = "average" (the default). "harmonic" (opt-in,
 // solver.coarse_operator) puts the fine faces in series between the two coarse centres and
 // the fine strips the coarse face covers in parallel -- the flux-preserving rule for a
@@ -53,6 +55,7 @@
 #include <vector>
 
 #include "kernels/multigrid.hpp"
+#include "solver/multigrid_galerkin.hpp"
 #include "solver/poisson.hpp"
 
 namespace refmap {
@@ -99,6 +102,9 @@ class MultigridHierarchy {
   const Level& level(int l) const { return levels_[l]; }
   mg::Stencil stencil(int l) const;
   const mg::Scratch& scratch() const { return scratch_; }
+  /// The 9-point coarse levels of coarse_operator = "galerkin" (nullptr otherwise; the
+  /// hierarchy then holds the finest level only).
+  const GalerkinLevels* galerkin() const { return galerkin_.get(); }
   /// Re-read omp_get_max_threads() (capped by the scratch allocated in setup).
   void update_threads();
 
@@ -130,6 +136,8 @@ class MultigridHierarchy {
   double rb_omega_ = 1.0;
   bool symmetric_ = false;
   MgCoarseOperator coarse_op_ = MgCoarseOperator::Average;
+  MgCoarseOperator built_op_ = MgCoarseOperator::Average;  ///< the operator levels_ was built for
+  std::unique_ptr<GalerkinLevels> galerkin_;  ///< coarse levels of "galerkin"
   bool sink_ = false;  ///< the operator has a sink (PoissonOperator::sink with some c > 0)
   int coarse_cells_ = 64;
   struct Coarse;

@@ -215,7 +215,8 @@ std::vector<KeyDef> build_keys() {
                          "multigrid smoother: red-black Gauss-Seidel or weighted Jacobi"),
       choice<MgCoarseOperator>("solver", "coarse_operator", dp.coarse_operator,
                                "multigrid coarse coefficients: restriction-weighted mean of beta, or fine faces "
-                               "in series normal to the coarse face (robust to density contrast)"),
+                               "in series normal to the coarse face, or Galerkin P^T L P with operator-dependent "
+                               "prolongation (9-point coarse levels; robust to density contrast)"),
       integer("solver", "pre_smooth", dp.pre_smooth, in(1, false, 100, false),
               "smoothing sweeps before coarse-grid correction"),
       integer("solver", "post_smooth", dp.post_smooth, in(1, false, 100, false),
