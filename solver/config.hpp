@@ -41,7 +41,7 @@ enum class StressForm { Cell, Face };
 enum class ViscousTime { Explicit, Implicit };
 /// Config::solid_time: the solid stress explicit, or explicit plus the stabilising implicit
 /// isotropic term eta = k G dt (1 - H) minus its explicit counterpart (docs/implicit.md).
-enum class SolidStressTime { Explicit, SemiImplicit };
+enum class SolidStressTime { Explicit, SemiImplicit, UpperConvected };
 
 /// Boundary condition of one side. `velocity` is the tangential wall speed of a moving
 /// wall (u on bottom/top, v on left/right); the normal velocity at a wall is always 0.
@@ -183,6 +183,7 @@ struct Config {
   ViscousTime viscous_time = ViscousTime::Explicit;        ///< time.viscous
   SolidStressTime solid_time = SolidStressTime::Explicit;  ///< time.solid_stress
   double solid_implicit_k = 0.5;  ///< time.solid_implicit_k: k of eta = k G dt (stable for k >= 1/4)
+  int solid_rate_sweeps = 2;  ///< time.solid_rate_sweeps: outer block Gauss-Seidel sweeps of the upper-convected step (0: cross terms lagged)
   /// time.implicit_tol: relative residual of the implicit velocity solve (the velocity
   /// change d over a step; solver/implicit_step.hpp); looser than the pressure's solver.tol
   double implicit_tol = 1e-5;
