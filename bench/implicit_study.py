@@ -25,8 +25,11 @@ def run(args, scene, name, sets):
     cmd = [args.bin, "run", scene, "-o", d, "-q", "-j", "1"] + sum((["--set", s] for s in sets), [])
     t0 = time.time()
     p = subprocess.run(cmd, capture_output=True, text=True)
-    wall = time.time() - t0
-    ok = p.returncode == 0
+    return collect(d, p.returncode == 0, time.time() - t0)
+
+
+def collect(d, ok, wall):
+    """The numbers of a finished run in directory d (also for a run made by hand)."""
     info = {"dir": d, "ok": ok, "wall_s": wall}
     if os.path.exists(os.path.join(d, "diagnostics.csv")):
         dg = diag(d)
@@ -179,7 +182,7 @@ def first_restitution(d):
     return float("nan")
 
 
-def bounce(args, w, cases=((1e3, ("explicit", "semi_implicit")), (1e4, ("semi_implicit",)),
+def bounce(args, w, cases=((1e3, ("explicit", "semi_implicit")), (1e4, ("explicit", "semi_implicit")),
                           (1e5, ("semi_implicit",)))):
     for mu_s, variants in cases:
         for variant in variants:
