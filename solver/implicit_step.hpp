@@ -50,8 +50,8 @@ class ImplicitVelocity {
   /// k from m and the tensor q = 2 mu_s dt (1 - H) b (kernels/helmholtz.hpp: 2 m + 2 q_xx on
   /// x faces and m + q_yy on y faces for u; m + q_xx and 2 m + 2 q_yy for v), the cross
   /// terms of tau at the latest iterate, time.solid_rate_sweeps outer block Gauss-Seidel
-  /// sweeps (u, then v; 0: one solve each with the cross terms left out, i.e. lagged at
-  /// u*). m, q need one ghost layer.
+  /// sweeps (u, then v; the first without the cross terms, i.e. lagged at u*, each further
+  /// one with those of the latest iterate). m, q need one ghost layer.
   void apply_rate(Field& u, Field& v, const Field& fx, const Field& fy, const Field& rho,
                   const Field& m, const Field& qxx, const Field& qxy, const Field& qyy, double dt);
   /// max |d change in the last outer sweep| / max |d| of the last apply_rate (0 with one sweep).

@@ -197,9 +197,10 @@ std::vector<KeyDef> build_keys() {
                               "time-step limit (docs/implicit.md)"),
       num("time", "solid_implicit_k", d.solid_implicit_k, gt(0),
           "k of the semi-implicit solid stress: eta = k G dt (stable for k >= 1/4, docs/implicit.md)"),
-      integer("time", "solid_rate_sweeps", d.solid_rate_sweeps, in(0, false, 100, false),
-              "outer block Gauss-Seidel sweeps (u, then v) of solid_stress = \"upper_convected\" over its "
-              "cross terms (b_xy and the other component's derivatives); 0: cross terms lagged (docs/implicit.md)"),
+      integer("time", "solid_rate_sweeps", d.solid_rate_sweeps, in(1, false, 100, false),
+              "outer block Gauss-Seidel sweeps (u, then v) of solid_stress = \"upper_convected\": the first "
+              "without its cross terms (b_xy and the other component's derivatives: lagged), each further "
+              "one with them at the last sweep's solution (docs/implicit.md)"),
       num("time", "implicit_tol", d.implicit_tol, in(0, true, 1, true),
           "relative residual of the implicit velocity solve (time.viscous = \"implicit\" or "
           "solid_stress = \"semi_implicit\"): its unknown is the velocity change over a step, so it "
