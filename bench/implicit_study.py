@@ -2,6 +2,7 @@
 import argparse, csv, math, os, subprocess, time
 
 SEMI = ["time.viscous=implicit", "time.solid_stress=semi_implicit"]
+UC = ["time.viscous=implicit", "time.solid_stress=upper_convected"]
 
 
 def rows(path):
@@ -24,8 +25,11 @@ def run(args, scene, name, sets):
     cmd = [args.bin, "run", scene, "-o", d, "-q", "-j", "1"] + sum((["--set", s] for s in sets), [])
     t0 = time.time()
     p = subprocess.run(cmd, capture_output=True, text=True)
-    wall = time.time() - t0
-    ok = p.returncode == 0
+    return collect(d, p.returncode == 0, time.time() - t0)
+
+
+def collect(d, ok, wall):
+    """The numbers of a finished run in directory d (also for a run made by hand)."""
     info = {"dir": d, "ok": ok, "wall_s": wall}
     if os.path.exists(os.path.join(d, "diagnostics.csv")):
         dg = diag(d)
@@ -61,10 +65,10 @@ def out_row(w, case, variant, info, **extra):
     print(r, flush=True)
 
 
-def couette(args, w):
+def couette(args, w, variants=(("explicit", []), ("semi_implicit", SEMI))):
     ref = list(csv.DictReader(open("tests/data/couette_elastic_startup.csv")))
     sets = ["grid.ny=128", "domain.lx=0.125", "domain.ly=2.0", "output.interval=0"]
-    for variant, extra in (("explicit", []), ("semi_implicit", SEMI)):
+    for variant, extra in variants:
         info = run(args, "scenes/couette_elastic.toml", "couette_" + variant, sets + extra)
         err = float("nan")
         if info["ok"]:
@@ -73,14 +77,14 @@ def couette(args, w):
         out_row(w, "couette_elastic_64", variant, info, linf_error=err)
 
 
-def shear(args, w):
+def shear(args, w, variants=("explicit", "semi_implicit")):
     lim = 0.5 / 32  # solid_cfl dx / c on 32 x 32, c = 1
     E0 = 0.25 ** 2 / 4
-    for variant, m in (("explicit", 1), ("explicit", 2), ("explicit", 4)) + tuple(
-            ("semi_implicit", m) for m in (1, 2, 4, 8, 10)):
+    for variant, m in tuple(("explicit", m) for m in (1, 2, 4) if "explicit" in variants) + tuple(
+            (v, m) for v in variants if v != "explicit" for m in (1, 2, 4, 8, 10)):
         sets = ["time.dt=%.10g" % (m * lim), "output.interval=0"]
         if variant != "explicit":
-            sets += ["time.solid_stress=semi_implicit"]
+            sets += ["time.solid_stress=" + variant]
         info = run(args, "scenes/shear_wave.toml", "shear_%s_%g" % (variant, m), sets)
         err = drift = float("nan")
         if info["ok"]:
@@ -178,12 +182,13 @@ def first_restitution(d):
     return float("nan")
 
 
-def bounce(args, w):
-    for mu_s, variants in ((1e3, ("explicit", "semi_implicit")), (1e4, ("semi_implicit",)), (1e5, ("semi_implicit",))):
+def bounce(args, w, cases=((1e3, ("explicit", "semi_implicit")), (1e4, ("explicit", "semi_implicit")),
+                          (1e5, ("semi_implicit",)))):
+    for mu_s, variants in cases:
         for variant in variants:
             sets = ["time.end=0.5", "output.interval=0", "solid[0].mu_s=%g" % mu_s]
             if variant != "explicit":
-                sets += SEMI
+                sets += ["time.viscous=implicit", "time.solid_stress=" + variant]
             info = run(args, "scenes/bounce_stiff.toml", "bounce_%g_%s" % (mu_s, variant), sets)
             dg = info.get("diag", [])
             a0 = float(dg[0]["solid0_area"]) if dg else float("nan")
@@ -193,12 +198,11 @@ def bounce(args, w):
                     restitution=first_restitution(info["dir"]))
 
 
-def disc_tgv(args, w):
+def disc_tgv(args, w, variants=(("explicit", []), ("semi_implicit", SEMI))):
     series = {}
-    for variant, extra in (("explicit", []), ("semi_implicit", SEMI)):
+    for variant, extra in variants:
         info = run(args, "scenes/disc_tgv.toml", "disc_tgv_" + variant, ["output.interval=0"] + extra)
         series[variant] = info
-    ex = series["explicit"].get("diag", [])
     for variant, info in series.items():
         dg = info.get("diag", [])
         # elastic energy peak and its time; kinetic energy at t = 1, 2, 4 against the explicit run
@@ -208,6 +212,15 @@ def disc_tgv(args, w):
         out_row(w, "disc_tgv", variant, info, elastic_peak=float(peak.get("elastic_energy", "nan")),
                 elastic_peak_t=float(peak.get("time", "nan")), ke_t1=at(dg, 1, "kinetic_energy"),
                 ke_t2=at(dg, 2, "kinetic_energy"), ke_t4=at(dg, 4, "kinetic_energy"))
+
+
+def upper_convected(args, w):
+    """time.solid_stress = "upper_convected" (docs/implicit.md) on the cases above, beside the
+    explicit and semi-implicit rows already in results/implicit.csv (not re-run)."""
+    couette(args, w, (("upper_convected", UC),))
+    shear(args, w, ("upper_convected",))
+    disc_tgv(args, w, (("upper_convected", UC),))
+    bounce(args, w, ((1e3, ("upper_convected",)), (1e4, ("upper_convected",)), (1e5, ("upper_convected",))))
 
 
 def main():
@@ -222,15 +235,16 @@ def main():
     # rows of the cases not run now are kept from the last results/implicit.csv
     prefix = {"couette": "couette_elastic", "shear": "shear_wave", "soft_disc": "soft_disc_cavity_t1",
               "bounce": "bounce_stiff", "disc_tgv": "disc_tgv", "tol": "tol_",
-              "soft_disc_full": "soft_disc_cavity_t8"}
+              "soft_disc_full": "soft_disc_cavity_t8", "uc": None}
     path = os.path.join(args.out, "implicit.csv")
     w = []
     if os.path.exists(path):
         w = [r for r in csv.DictReader(open(path))
-             if not any(r["case"].startswith(prefix[c]) for c in args.cases)]
+             if not any(r["case"].startswith(prefix[c]) if prefix[c] else
+                        r["variant"].startswith("upper_convected") for c in args.cases)]
     for c in args.cases:
         {"couette": couette, "shear": shear, "soft_disc": soft_disc, "bounce": bounce, "disc_tgv": disc_tgv,
-         "tol": implicit_tol, "soft_disc_full": soft_disc_full}[c](args, w)
+         "tol": implicit_tol, "soft_disc_full": soft_disc_full, "uc": upper_convected}[c](args, w)
         keys = []
         for r in w:
             keys += [k for k in r if k not in keys]

@@ -40,8 +40,9 @@ enum class StressForm { Cell, Face };
 /// its compact part (solver/implicit_step.hpp, docs/implicit.md).
 enum class ViscousTime { Explicit, Implicit };
 /// Config::solid_time: the solid stress explicit, or explicit plus the stabilising implicit
-/// isotropic term eta = k G dt (1 - H) minus its explicit counterpart (docs/implicit.md).
-enum class SolidStressTime { Explicit, SemiImplicit };
+/// isotropic term eta = k G dt (1 - H) minus its explicit counterpart, or the
+/// upper-convected stress increment 2 mu_s dt (1 - H)(L b + b L^T) implicit (docs/implicit.md).
+enum class SolidStressTime { Explicit, SemiImplicit, UpperConvected };
 /// Config::jump_flux: the momentum's face values where the density is not one value in a
 /// face's stencil (a density jump), with central advection: Superbee-limited (default) or
 /// the same central values as elsewhere (docs/density_ratio.md).
@@ -187,6 +188,7 @@ struct Config {
   ViscousTime viscous_time = ViscousTime::Explicit;        ///< time.viscous
   SolidStressTime solid_time = SolidStressTime::Explicit;  ///< time.solid_stress
   double solid_implicit_k = 0.5;  ///< time.solid_implicit_k: k of eta = k G dt (stable for k >= 1/4)
+  int solid_rate_sweeps = 1;  ///< time.solid_rate_sweeps: outer block Gauss-Seidel sweeps of the upper-convected step (1: cross terms lagged)
   /// time.implicit_tol: relative residual of the implicit velocity solve (the velocity
   /// change d over a step; solver/implicit_step.hpp); looser than the pressure's solver.tol
   double implicit_tol = 1e-5;

@@ -44,6 +44,19 @@ class ImplicitVelocity {
   void apply(Field& u, Field& v, const Field& fx, const Field& fy, const Field& rho,
              const Field& m, double dt);
 
+  /// time.solid_stress = "upper_convected" (docs/implicit.md): the same step with the solid
+  /// stress increment tau = 2 mu_s dt (1 - H)(L b + b L^T), L = grad d, implicit: per
+  /// component (rho/dt) d - div(k grad d)_compact = f + cross(d), the compact coefficients
+  /// k from m and the tensor q = 2 mu_s dt (1 - H) b (kernels/helmholtz.hpp: 2 m + 2 q_xx on
+  /// x faces and m + q_yy on y faces for u; m + q_xx and 2 m + 2 q_yy for v), the cross
+  /// terms of tau at the latest iterate, time.solid_rate_sweeps outer block Gauss-Seidel
+  /// sweeps (u, then v; the first without the cross terms, i.e. lagged at u*, each further
+  /// one with those of the latest iterate). m, q need one ghost layer.
+  void apply_rate(Field& u, Field& v, const Field& fx, const Field& fy, const Field& rho,
+                  const Field& m, const Field& qxx, const Field& qxy, const Field& qyy, double dt);
+  /// max |d change in the last outer sweep| / max |d| of the last apply_rate (0 with one sweep).
+  double last_sweep_change() const { return sweep_change_; }
+
   /// Iterations of the last solve (u and v summed) and the worse relative residual.
   int last_iterations() const { return iterations_; }
   double last_residual() const { return residual_; }
@@ -51,6 +64,11 @@ class ImplicitVelocity {
 
  private:
   SolveStats solve(int comp, const Field& f, const Field& rho, const Field& m, double dt, Field& d);
+  /// The initial guesses du_, dv_ for this step (extrapolated from the last two).
+  void predict_changes(double dt);
+  /// Ghosts of a change d of component comp: the homogeneous wall condition (fixed: -d,
+  /// free: +d) or the periodic wrap; corners included (for the tangential differences).
+  void change_ghosts(Field& d, int comp) const;
 
   Config cfg_;
   Sides sides_;
@@ -63,6 +81,9 @@ class ImplicitVelocity {
   Field rhs_;
   Field du_, dv_;    ///< the last step's changes (then this step's initial guesses)
   Field du2_, dv2_;  ///< the changes of the step before (the guess extrapolates the two)
+  std::array<Field, 2> kx_, ky_;  ///< upper-convected: cell coefficients of the compact part
+  Field cx_, cy_, dprev_;          ///< upper-convected: cross force, the last sweep's d
+  double sweep_change_ = 0.0;
   double dt1_ = 0.0, dt2_ = 0.0;  ///< the last two steps' dt
   long steps_ = 0;
   int iterations_ = 0;

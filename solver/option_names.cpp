@@ -81,7 +81,8 @@ std::span<const OptionName<ViscousTime>> option_names(ViscousTime) {
 
 std::span<const OptionName<SolidStressTime>> option_names(SolidStressTime) {
   static const OptionName<SolidStressTime> n[] = {{SolidStressTime::Explicit, "explicit"},
-                                                  {SolidStressTime::SemiImplicit, "semi_implicit"}};
+                                                  {SolidStressTime::SemiImplicit, "semi_implicit"},
+                                                  {SolidStressTime::UpperConvected, "upper_convected"}};
   return span_of(n);
 }
 

@@ -780,6 +780,7 @@ void parse_time(const Ctx& ctx, const Table& top, Config& cfg) {
   cfg.viscous_time = t.option<ViscousTime>("viscous");
   cfg.solid_time = t.option<SolidStressTime>("solid_stress");
   cfg.solid_implicit_k = t.number("solid_implicit_k");
+  cfg.solid_rate_sweeps = t.integer("solid_rate_sweeps");
   cfg.implicit_tol = t.number("implicit_tol");
 }
 

@@ -191,9 +191,16 @@ std::vector<KeyDef> build_keys() {
       choice<SolidStressTime>("time", "solid_stress", d.solid_time,
                               "`\"explicit\"`: dt <= solid_cfl dx sqrt(rho_s / G); `\"semi_implicit\"`: an "
                               "implicit isotropic term eta = k G dt (1 - H) added and its explicit counterpart "
-                              "subtracted (first order in dt); no solid time-step limit (docs/implicit.md)"),
+                              "subtracted (first order in dt); `\"upper_convected\"`: the stress increment 2 mu_s dt (L b + b L^T) "
+                              "of the new velocity (upper-convected rate of b, blended with 1 - H) implicit in the "
+                              "velocity solve, its explicit counterpart subtracted (first order in dt); no solid "
+                              "time-step limit (docs/implicit.md)"),
       num("time", "solid_implicit_k", d.solid_implicit_k, gt(0),
           "k of the semi-implicit solid stress: eta = k G dt (stable for k >= 1/4, docs/implicit.md)"),
+      integer("time", "solid_rate_sweeps", d.solid_rate_sweeps, in(1, false, 100, false),
+              "outer block Gauss-Seidel sweeps (u, then v) of solid_stress = \"upper_convected\": the first "
+              "without its cross terms (b_xy and the other component's derivatives: lagged), each further "
+              "one with them at the last sweep's solution (docs/implicit.md)"),
       num("time", "implicit_tol", d.implicit_tol, in(0, true, 1, true),
           "relative residual of the implicit velocity solve (time.viscous = \"implicit\" or "
           "solid_stress = \"semi_implicit\"): its unknown is the velocity change over a step, so it "

@@ -50,10 +50,12 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
   }
   if (RigidBodies::needed(cfg_)) bodies_ = std::make_unique<RigidBodies>(cfg_);
   poisson_ = make_poisson_solver(cfg_.poisson);
-  if (cfg_.viscous_time == ViscousTime::Implicit || cfg_.solid_time == SolidStressTime::SemiImplicit) {
+  if (cfg_.viscous_time == ViscousTime::Implicit || cfg_.solid_time != SolidStressTime::Explicit) {
     implicit_ = std::make_unique<ImplicitVelocity>(cfg_);
     mimp_.resize(nx, ny, ng);
   }
+  if (cfg_.solid_time == SolidStressTime::UpperConvected)
+    for (Field* f : {&qxx_, &qxy_, &qyy_}) f->resize(nx, ny, ng);
   initialise();
   if (!cfg_.tracers.empty())
     tracers_ = std::make_unique<Tracers>(cfg_.grid, tracer_seeds(cfg_.tracers), cfg_.bc[0].type == BcType::Periodic,
@@ -523,7 +525,12 @@ void Simulation::apply_viscous_and_solid_stress(double dt) {
   if ((viscous || elastic) && implicit_) {
     ScopedPhase ph(timers_, "implicit velocity");
     implicit_viscosity(dt);
-    implicit_->apply(u_, v_, fx_, fy_, rho_, mimp_, dt);
+    if (cfg_.solid_time == SolidStressTime::UpperConvected) {
+      rate_coefficients(dt);
+      implicit_->apply_rate(u_, v_, fx_, fy_, rho_, mimp_, qxx_, qxy_, qyy_, dt);
+    } else {
+      implicit_->apply(u_, v_, fx_, fy_, rho_, mimp_, dt);
+    }
   } else if (viscous || elastic) {
     apply_force(u_.view(), v_.view(), fx_.view(), fy_.view(), rho_.view(), dt, nx, ny);
   }
@@ -536,6 +543,22 @@ void Simulation::implicit_viscosity(double dt) {
     for (const auto& s : solids_)  // blended like the stress, eq. (3.6)
       if (s->spec().mu_s > 0.0) s->add_blend(mimp_, cfg_.solid_implicit_k * s->wave_modulus() * dt, 0.0);
   fill_scalar_ghosts(mimp_, cfg_.bc);
+}
+
+void Simulation::rate_coefficients(double dt) {
+  // q = 2 mu_s dt (1 - H) b of every elastic solid (the upper-convected step's tensor,
+  // kernels/helmholtz.hpp), b from the stress just computed from the advected xi
+  for (Field* f : {&qxx_, &qxy_, &qyy_}) f->fill(0.0);
+  for (const auto& s : solids_) {
+    if (s->spec().mu_s <= 0.0) continue;
+    with_constitutive_model(s->spec(), [&](const auto& model) {
+      blend_rate_coefficients(model, s->stress_xx().cview(), s->stress_xy().cview(),
+                              s->stress_yy().cview(), s->phi().cview(), s->ni(), s->nj(),
+                              s->transition(), dt, qxx_.view(), qxy_.view(), qyy_.view(), s->i0(),
+                              s->j0());
+    });
+  }
+  for (Field* f : {&qxx_, &qxy_, &qyy_}) fill_scalar_ghosts(*f, cfg_.bc);
 }
 
 void Simulation::setup_poisson() {

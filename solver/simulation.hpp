@@ -147,6 +147,9 @@ class Simulation {
   /// "implicit") plus eta = k G dt (1 - H) of every elastic solid (time.solid_stress =
   /// "semi_implicit").
   void implicit_viscosity(double dt);
+  /// The upper-convected step's tensor q = 2 mu_s dt (1 - H) b (time.solid_stress =
+  /// "upper_convected") of every elastic solid into qxx_, qxy_, qyy_.
+  void rate_coefficients(double dt);
   void impose_prescribed_velocity(double t);
   /// Subtracts beta_f times the contact face force from the face accelerations gxf_, gyf_.
   void add_contact_face_accel();
@@ -180,6 +183,7 @@ class Simulation {
   SolveStats last_stats_;
   std::unique_ptr<ImplicitVelocity> implicit_;  ///< implicit stress step (null: explicit)
   Field mimp_;                                   ///< its implicit viscosity
+  Field qxx_, qxy_, qyy_;                         ///< its upper-convected tensor (kernels/helmholtz.hpp)
   PhaseTimers timers_;
   std::unique_ptr<Tracers> tracers_;
   std::unique_ptr<Markers> markers_;
