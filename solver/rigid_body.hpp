@@ -109,6 +109,9 @@ class RigidBodies {
   /// gxf, gyf: the face accelerations the predictor will use; rho: the new density.
   void force(const std::vector<std::unique_ptr<Solid>>& solids, Field& u, Field& v, const Field& rho,
              const Field& gxf, const Field& gyf, const Grid& g, double dt);
+  /// sum w rho (u - dt G_c) dx^2 over body k's region (x, y, angular about its reference
+  /// point) after the last forcing; w = chi (diffuse) or 1 inside (interpolated)
+  const std::array<double, 3>& region_momentum(int k) const { return body_momentum_[std::size_t(k)]; }
 
   void save_state(CheckpointWriter& w) const;
   void load_state(CheckpointReader& r);
@@ -118,8 +121,15 @@ class RigidBodies {
   std::vector<RigidPath> paths_;
   std::vector<RigidPose> pose_;
   std::vector<BodyLoad> load_;
-  /// sum rho chi u_body dx^2 (x, y, angular about the reference point) at the last forcing
+  double weight(int k, const Solid& s, int i, int j, double inv_dx) const;
+  /// the region's momentum after the last forcing (region_momentum)
   std::vector<std::array<double, 3>> body_momentum_;
+  /// interpolated forcing: the velocities the last forcing left for after the projection
+  struct EndVelocity {
+    int i0 = 0, j0 = 0, ni = 0, nj = 0;
+    std::vector<double> u, v;
+  };
+  std::vector<EndVelocity> end_;
   bool have_momentum_ = false;
   double t0_ = 0.0;
 };
