@@ -18,7 +18,10 @@
 # coarser grids c_D, c_L at t = 6 are within 1e-4 of their steady values. A step count, not an
 # end time: a last step cut short to land on an end time spoils the force and the pressure), DT_STUDY (default 1: the
 # 0.01 grid again at dt / 2 and dt / 4, the forcing's dependence on dt), FORCING ("diffuse" or
-# "interpolated": the cylinder's `forcing`, docs/bodies.md; default: the scene's).
+# "interpolated": the cylinder's `forcing`, docs/bodies.md; default: the scene's; the run names
+# get the prefix "$FORCING_"), CSV (default results/cylinder_re20.csv). results/cylinder_re20.csv
+# holds both: the rows of a run with FORCING=diffuse and one with FORCING=interpolated
+# RADIUS_STUDY=0 THREADS_FINE=1, the reference rows once.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
@@ -30,7 +33,7 @@ mkdir -p "$RAW"
 export OMP_WAIT_POLICY=PASSIVE
 
 run() {  # run NAME DX THREADS [extra --set ..., a later time.dt wins]
-  local name=$1 dx=$2 threads=$3
+  local name=${FORCING:+${FORCING}_}$1 dx=$2 threads=$3
   shift 3
   local nx ny
   nx=$(python3 -c "print(round(2.2 / $dx))")
@@ -53,16 +56,16 @@ for dx in $GRIDS; do
     extra=(--set "time.max_steps=${FINE_STEPS:-2600}")
   fi
   run "dx_$dx" "$dx" "$threads" "${extra[@]}"
-  dirs+=("$RAW/dx_$dx")
+  dirs+=("$RAW/${FORCING:+${FORCING}_}dx_$dx")
 done
 if [ "${RADIUS_STUDY:-1}" = "1" ]; then
   run "dx_0.005_r0.0475" 0.005 "${THREADS:-1}" --set 'solid[0].radius=0.0475'
-  dirs+=("$RAW/dx_0.005_r0.0475")
+  dirs+=("$RAW/${FORCING:+${FORCING}_}dx_0.005_r0.0475")
 fi
 if [ "${DT_STUDY:-1}" = "1" ]; then  # the coarse grid at dt / 2 and dt / 4
   for f in 2 4; do
     run "dx_0.01_dt$f" 0.01 "${THREADS:-1}" --set "time.dt=$(python3 -c "print(0.009278 / $f)")"
-    dirs+=("$RAW/dx_0.01_dt$f")
+    dirs+=("$RAW/${FORCING:+${FORCING}_}dx_0.01_dt$f")
   done
 fi
 CSV="${CSV:-results/cylinder_re20.csv}"

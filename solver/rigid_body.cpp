@@ -54,6 +54,7 @@ RigidBodies::RigidBodies(const Config& cfg) : specs_(cfg.solids), t0_(cfg.t_star
   load_.resize(n);
   body_momentum_.assign(n, {0.0, 0.0, 0.0});
   end_.resize(n);
+  region_.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const SolidSpec& s = specs_[k];
     RigidPose& p = pose_[k];
@@ -175,16 +176,6 @@ void RigidBodies::force(const std::vector<std::unique_ptr<Solid>>& solids, Field
           f(gi, gj, w, rho(gi, gj), g.xc(gi) - p.cx, g.yc(gj) - p.cy, gcx(gi, gj), gcy(gi, gj));
         }
     };
-    if (!have_momentum_) {  // the first step: the region's momentum before it is the body's
-      double mx = 0, my = 0, ml = 0;
-      each([&](int, int, double, double r, double rx, double ry, double, double) {
-        const double ubx = p.u - p.omega * ry, uby = p.v + p.omega * rx;
-        mx += r * ubx;
-        my += r * uby;
-        ml += r * (rx * uby - ry * ubx);
-      });
-      body_momentum_[k] = {mx * a, my * a, ml * a};
-    }
     if (specs_[k].motion == SolidMotion::Pinned) {
       // the rigid rotation with the angular momentum of the region (no torque from the forcing)
       double num = 0.0, den = 0.0;
@@ -295,35 +286,61 @@ void RigidBodies::force(const std::vector<std::unique_ptr<Solid>>& solids, Field
       }
     }
     // F = (-(momentum the forcing added) + (change of the region's momentum)) / dt. The
-    // region is every cell the forcing changes (weight 1, not chi), its momentum taken with
-    // the velocities the projection will leave with the old pressure, u - dt G_c, not with
-    // the body's velocity: the partly forced cells keep a slip that the next step's forcing
-    // takes back; that momentum was lent by this step's forcing, and counting it here makes
-    // the force the same for a short step as for a full one (it was not: a step cut short to
-    // land on an end time divided the previous step's slip by its own dt; with weight chi a
-    // part (1 - chi)^2 of it stayed). Not with the velocities after the projection: its
-    // pressure increment removes the forcing's divergence in the band by an impulse that
-    // does not scale with dt.
+    // region R is every cell the forcing changes now (weight 1, not chi); the change is
+    // taken cell by cell over these same cells, from the previous step's value, so a cell
+    // that enters or leaves R as the body moves carries no momentum in or out with it. The
+    // velocities are those the projection will leave if the pressure does not change, u -
+    // dt G_c, not the body's: the partly forced cells keep a slip that the next step's
+    // forcing takes back; that momentum was lent by this step's forcing, and counting it
+    // here makes the force the same for a short step as for a full one (it was not: a step
+    // cut short to land on an end time divided the previous step's slip by its own dt; with
+    // weight chi a part (1 - chi)^2 of it stayed). Not with the velocities after the
+    // projection: its pressure increment removes the forcing's divergence in the band by an
+    // impulse that does not scale with dt.
+    RegionState& Q = region_[k];
+    const int ni = s.ni(), nj = s.nj(), i0 = s.i0(), j0 = s.j0();
+    auto before = [&](int gi, int gj, int c, double now) {  // the cell's value one step ago
+      const int i = gi - Q.i0, j = gj - Q.j0;
+      if (Q.u.empty() || i < 0 || j < 0 || i >= Q.ni || j >= Q.nj) {
+        if (have_momentum_) return now;  // outside the last window: not forced, no change counted
+        const auto ub = p.velocity(g.xc(gi), g.yc(gj));  // the first step: the body's velocity
+        return ub[std::size_t(c)];
+      }
+      return (c == 0 ? Q.u : Q.v)[std::size_t(j) * std::size_t(Q.ni) + std::size_t(i)];
+    };
     double mx = 0, my = 0, ml = 0;
     auto region = [&](int gi, int gj) {
       const double r = rho(gi, gj), rx = g.xc(gi) - p.cx, ry = g.yc(gj) - p.cy;
-      const double ux = u(gi, gj) - dt * gcx(gi, gj), uy = v(gi, gj) - dt * gcy(gi, gj);
-      mx += r * ux;
-      my += r * uy;
-      ml += r * (rx * uy - ry * ux);
+      const double qx = u(gi, gj) - dt * gcx(gi, gj), qy = v(gi, gj) - dt * gcy(gi, gj);
+      const double dx_ = qx - before(gi, gj, 0, qx), dy_ = qy - before(gi, gj, 1, qy);
+      mx += r * dx_;
+      my += r * dy_;
+      ml += r * (rx * dy_ - ry * dx_);
     };
     if (sharp) {
       for (const auto& c : touched) region(c.first, c.second);
     } else {
       each([&](int gi, int gj, double, double, double, double, double, double) { region(gi, gj); });
     }
-    const std::array<double, 3> m = {mx * a, my * a, ml * a};
-    const std::array<double, 3>& m0 = body_momentum_[k];
+    // this step's values over the whole window, for the next step
+    Q.i0 = i0;
+    Q.j0 = j0;
+    Q.ni = ni;
+    Q.nj = nj;
+    Q.u.resize(std::size_t(ni) * std::size_t(nj));
+    Q.v.resize(Q.u.size());
+    for (int j = 0; j < nj; ++j)
+      for (int i = 0; i < ni; ++i) {
+        const int gi = i0 + i, gj = j0 + j;
+        Q.u[std::size_t(j) * std::size_t(ni) + std::size_t(i)] = u(gi, gj) - dt * gcx(gi, gj);
+        Q.v[std::size_t(j) * std::size_t(ni) + std::size_t(i)] = v(gi, gj) - dt * gcy(gi, gj);
+      }
+    const std::array<double, 3> dm = {mx * a, my * a, ml * a};
     BodyLoad& L = load_[k];
-    L.fx = (-dmx * a + (m[0] - m0[0])) / dt;
-    L.fy = (-dmy * a + (m[1] - m0[1])) / dt;
-    L.torque = (-dl * a + (m[2] - m0[2])) / dt;
-    body_momentum_[k] = m;
+    L.fx = (-dmx * a + dm[0]) / dt;
+    L.fy = (-dmy * a + dm[1]) / dt;
+    L.torque = (-dl * a + dm[2]) / dt;
+    body_momentum_[k] = dm;
   }
   have_momentum_ = true;
 }
@@ -337,6 +354,14 @@ void RigidBodies::save_state(CheckpointWriter& w) const {
                         {"omega", p.omega}, {"fx", load_[k].fx}, {"fy", load_[k].fy}, {"torque", load_[k].torque},
                         {"mx", body_momentum_[k][0]}, {"my", body_momentum_[k][1]}, {"ml", body_momentum_[k][2]}})
       w.put_f64(t + n, x);
+    // the last forcing's cell values (region change, interpolated stencil): a restart
+    // continues bit for bit
+    for (auto [n, W] : {std::pair{"region.", &region_[k]}, {"end.", &end_[k]}}) {
+      for (auto [m, x] : {std::pair{"i0", W->i0}, {"j0", W->j0}, {"ni", W->ni}, {"nj", W->nj}})
+        w.put_i64(t + n + m, x);
+      w.put_f64s(t + n + "u", W->u);
+      w.put_f64s(t + n + "v", W->v);
+    }
   }
   w.put_i64("bodies.have_momentum", have_momentum_ ? 1 : 0);
 }
@@ -351,6 +376,12 @@ void RigidBodies::load_state(CheckpointReader& r) {
                         {"torque", &load_[k].torque}, {"mx", &body_momentum_[k][0]}, {"my", &body_momentum_[k][1]},
                         {"ml", &body_momentum_[k][2]}})
       *x = r.get_f64(t + n);
+    for (auto [n, W] : {std::pair{"region.", &region_[k]}, {"end.", &end_[k]}}) {
+      for (auto [m, x] : {std::pair{"i0", &W->i0}, {"j0", &W->j0}, {"ni", &W->ni}, {"nj", &W->nj}})
+        *x = int(r.get_i64(t + n + m));
+      W->u = r.get_f64s(t + n + "u");
+      W->v = r.get_f64s(t + n + "v");
+    }
   }
   have_momentum_ = r.get_i64("bodies.have_momentum") != 0;
 }
