@@ -38,14 +38,15 @@
 //
 // THE STRENGTH does not depend on the solids' stiffness: P = stiffness * rho_max * U^2,
 // rho_max the largest density of the scene (fluid or solid) and U a velocity scale:
-// contact.velocity_scale if given, else the largest of the scene's own velocity scales --
-// the largest initial speed on the grid, the free-fall speed sqrt(2 |g| L) over the domain
-// extent L along g, the moving walls' speeds and the inflow's speed at the start -- and the
-// largest centroid speed of any solid seen so far (observe; so P never decreases, and a
-// solid driven faster than the scene's scales foresaw is still stopped). Not the run's
-// length: U used to fall back to the domain width divided by the run time, so the time
-// step of a run depended on time.end even without any contact. If all are 0, P = 0 until
-// a solid moves. The default stiffness 20 makes p_c(0) 40
+// contact.velocity_scale if given, else the larger of the scene's own velocity scales --
+// the largest initial speed on the grid and the free-fall speed sqrt(2 |g| L) over the
+// domain extent L along g -- and the largest centroid speed of any solid seen so far
+// (observe, every step; so P never decreases, and U >= the speed at which a solid can
+// approach at any time). Not the run's length: U used to fall back to the domain width
+// divided by the run time, so the time step depended on time.end even without contact.
+// Not the walls' or the inflow's speeds either: a solid at rest in a sheared layer never
+// nears a wall, and the limit below (dt ~ 0.1 dx / U) would then bind for nothing. With
+// no scale P = 0 until a solid moves. The default stiffness 20 makes p_c(0) 40
 // times the stagnation pressure rho_max U^2 / 2 of the fastest approach the scene can
 // produce. (An earlier attempt scaled the strength with mu_s: the restitution of a bounce
 // then measured the contact law, not the solid.)

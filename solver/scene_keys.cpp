@@ -395,7 +395,7 @@ std::vector<KeyDef> build_keys() {
           "d in cells: the force acts once a gap is below d Δx; also the threshold of the contact events"),
       num("contact", "stiffness", dc.stiffness, ge(0),
           "P, the contact pressure at zero gap, in units of ρ_max U² (independent of the solids' `mu_s`)"),
-      num("contact", "velocity_scale", dc.velocity_scale, ge(0, "0 = automatic"), "U; 0 = automatic: the scene's initial, free-fall, wall and inflow speeds, raised to the fastest solid seen"),
+      num("contact", "velocity_scale", dc.velocity_scale, ge(0, "0 = automatic"), "U; 0 = automatic: the initial and free-fall speeds, raised to the fastest solid seen"),
   };
   return k;
 }

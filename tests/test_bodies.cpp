@@ -268,6 +268,8 @@ TEST(Bodies, SceneErrors) {
   EXPECT_NE(error(body_toml("a", circle(0.5, 0.5, 0.1), "motion = \"pinned\"\nu = 1.0\n")).find("not used with motion"), std::string::npos);
   EXPECT_NE(error(post + disc_toml("flag", 0.45, 0.5, 0.1, 1.0, "clamp = \"nothing\"\n")).find("no solid is named"), std::string::npos);
   EXPECT_NE(error(disc_toml("soft", 0.2, 0.5, 0.1) + disc_toml("flag", 0.6, 0.5, 0.1, 1.0, "clamp = \"soft\"\n")).find("is not rigid"), std::string::npos);
+  EXPECT_NE(error(body_toml("a", circle(0.5, 0.5, 0.1), "motion = \"fixed\"\nforcing = \"sharp\"\n")).find("unknown value \"sharp\""), std::string::npos);
+  EXPECT_NE(error(disc_toml("soft", 0.5, 0.5, 0.1, 1.0, "forcing = \"interpolated\"\n")).find("only used with motion"), std::string::npos);
   // a clamped pair may overlap; another pair may not
   EXPECT_EQ(error(post + disc_toml("flag", 0.42, 0.5, 0.1, 1.0, "clamp = \"post\"\n")), "(loaded)");
   EXPECT_NE(error(post + disc_toml("flag", 0.42, 0.5, 0.1)).find("overlaps"), std::string::npos);
