@@ -129,6 +129,7 @@ void Contact::save_state(CheckpointWriter& w) const {
   put_pods(w, "contact.pair_state", pair_state_);
   w.put_f64s("contact.pair_totals", pair_totals_);
   w.put_f64("contact.energy", energy_);
+  w.put_f64("contact.U", U_);
   w.put_i64("contact.events", std::int64_t(events_.size()));
   for (const ContactEvent& e : events_) {
     w.put_f64("event.time", e.time);
@@ -146,6 +147,8 @@ void Contact::load_state(CheckpointReader& r) {
   get_pods(r, "contact.pair_state", pair_state_);
   pair_totals_ = r.get_f64s("contact.pair_totals");
   energy_ = r.get_f64("contact.energy");
+  U_ = r.get_f64("contact.U");
+  P_ = P_unit_ * U_ * U_;
   const std::int64_t n = r.get_i64("contact.events");
   if (n < 0 || n > (std::int64_t(1) << 32)) throw CheckpointError("checkpoint " + r.path() + ": impossible event count");
   events_.clear();

@@ -32,6 +32,10 @@ enum class SolidVelocity { Rigid, Fluid };
 /// SolidSpec::motion: a soft solid moved by the flow (Free), or a rigid body held still,
 /// moved on a prescribed path or pinned at a point (solver/rigid_body.hpp, docs/bodies.md).
 enum class SolidMotion { Free, Fixed, Prescribed, Pinned };
+/// SolidSpec::forcing: how a rigid body's velocity is imposed (solver/rigid_body.hpp):
+/// Diffuse, relaxed by the sub-cell fraction chi; Interpolated, sharp (cells inside take the
+/// body's velocity, the fluid cells next to the surface a value interpolated along the normal).
+enum class BodyForcing { Diffuse, Interpolated };
 /// SolidsOptions::extrapolation: Algorithm 2 (least squares) or the PDE baseline.
 enum class ExtrapolationMethod { Lsq, Pde };
 /// SolidsOptions::stress_form: discretisation of the solid stress divergence.
@@ -113,6 +117,7 @@ struct SolidSpec {
   /// Free: a soft solid (the paper's); otherwise a rigid body whose velocity is imposed in
   /// its region (solver/rigid_body.hpp). A rigid body has no elastic stress (mu_s = 0).
   SolidMotion motion = SolidMotion::Free;
+  BodyForcing forcing = BodyForcing::Diffuse;  ///< rigid bodies only
   /// Prescribed: the centre's path x(t), y(t) and the rotation rate omega(t) (expressions
   /// of t; the path starts at the shape's centre).
   std::string path_x, path_y, rotation_rate;

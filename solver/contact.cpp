@@ -43,9 +43,13 @@ Contact::Contact(const Config& cfg, double velocity_scale) : g_(cfg.grid) {
   h_ = 2.0 * g_.dx;
   double rho_max = cfg.rho_f;
   for (const SolidSpec& s : cfg.solids) rho_max = std::max(rho_max, s.density);
-  double U = o.velocity_scale > 0.0 ? o.velocity_scale : velocity_scale;
-  if (!(U > 0.0)) U = g_.lx() / std::max(cfg.t_end - cfg.t_start, 1e-300);
-  P_ = o.stiffness * rho_max * U * U;
+  // P = stiffness rho_max U^2 (contact.hpp). U given, or automatic: the scene's own velocity
+  // scales (from Simulation) raised to the largest solid speed seen (see_speed). It used to
+  // fall back to l_x / (t_end - t_start) when the scene had none, so dt depended on time.end
+  auto_U_ = !(o.velocity_scale > 0.0);
+  P_unit_ = o.stiffness * rho_max;
+  U_ = auto_U_ ? std::max(velocity_scale, 0.0) : o.velocity_scale;
+  P_ = P_unit_ * U_ * U_;
   // the gap written when there is nothing to measure: no other solid's band meets this
   // one's, there is no other solid, or every side is periodic / contact.walls = false
   // (docs/output.md)
@@ -63,6 +67,12 @@ bool clamped_pair(const Solid& a, int ia, const Solid& b, int ib) {
   return a.spec().clamp_index == ib || b.spec().clamp_index == ia;
 }
 }  // namespace
+
+void Contact::see_speed(double speed) {
+  if (!auto_U_ || !(speed > U_)) return;
+  U_ = speed;
+  P_ = P_unit_ * U_ * U_;
+}
 
 double Contact::min_dt(double rho_min) const {
   if (!force_ || P_ <= 0.0) return 1e300;
@@ -360,6 +370,9 @@ void Contact::close_rebound(double t, int solid, int side, WallState& w, const c
 void Contact::observe(double t, const std::vector<std::unique_ptr<Solid>>& solids,
                       const std::vector<SolidDiagnostics>& diag) {
   const size_t n = solids.size();
+  // the strength follows the fastest solid so far (automatic U only): a solid faster than
+  // every scale of the scene foresaw is still stopped (docs/stability.md: P >~ 10 rho V^2)
+  for (size_t i = 0; i < n && i < diag.size(); ++i) see_speed(std::hypot(diag[i].u, diag[i].v));
   // hysteresis: a contact starts when the gap falls below d, ends when it exceeds d + dx/4
   const double d_on = d_, d_off = d_ + 0.25 * g_.dx;
   for (size_t i = 0; i < n; ++i) {

@@ -38,9 +38,15 @@
 //
 // THE STRENGTH does not depend on the solids' stiffness: P = stiffness * rho_max * U^2,
 // rho_max the largest density of the scene (fluid or solid) and U a velocity scale:
-// contact.velocity_scale if given, else the larger of the largest initial speed on the
-// grid and the free-fall speed sqrt(2 |g| L) over the domain extent L along g (if both are
-// 0: the domain width divided by the run time). The default stiffness 20 makes p_c(0) 40
+// contact.velocity_scale if given, else the larger of the scene's own velocity scales --
+// the largest initial speed on the grid and the free-fall speed sqrt(2 |g| L) over the
+// domain extent L along g -- and the largest centroid speed of any solid seen so far
+// (observe, every step; so P never decreases, and U >= the speed at which a solid can
+// approach at any time). Not the run's length: U used to fall back to the domain width
+// divided by the run time, so the time step depended on time.end even without contact.
+// Not the walls' or the inflow's speeds either: a solid at rest in a sheared layer never
+// nears a wall, and the limit below (dt ~ 0.1 dx / U) would then bind for nothing. With
+// no scale P = 0 until a solid moves. The default stiffness 20 makes p_c(0) 40
 // times the stagnation pressure rho_max U^2 / 2 of the fastest approach the scene can
 // produce. (An earlier attempt scaled the strength with mu_s: the restitution of a bounce
 // then measured the contact law, not the solid.)
@@ -105,6 +111,9 @@ class Contact {
   /// obstacle of chi_i p_c(s) dx^2 (the force p_c grad chi_i is minus its variation).
   double energy() const { return energy_; }
   double pressure() const { return P_; }      ///< P: contact pressure at zero gap
+  double velocity_scale() const { return U_; }  ///< U of P = stiffness rho_max U^2
+  /// Raises the automatic U to `speed` if larger (contact.velocity_scale = 0 only).
+  void see_speed(double speed);
   double range() const { return d_; }         ///< d in length units
   bool force_enabled() const { return force_; }
 
@@ -181,6 +190,8 @@ class Contact {
   Sides sides_;
   bool force_ = false;
   double P_ = 0.0, d_ = 0.0, h_ = 0.0, sentinel_ = 0.0;
+  double U_ = 0.0, P_unit_ = 0.0;  ///< U and stiffness rho_max (P = P_unit_ U^2)
+  bool auto_U_ = true;             ///< contact.velocity_scale = 0: U follows see_speed
   std::vector<double> gap_solid_, gap_wall_;
   std::vector<std::array<WallState, 4>> wall_state_;
   std::vector<PairState> pair_state_;  // i < j, index i * n + j

@@ -52,6 +52,12 @@ std::span<const OptionName<SolidMotion>> option_names(SolidMotion) {
   return span_of(n);
 }
 
+std::span<const OptionName<BodyForcing>> option_names(BodyForcing) {
+  static const OptionName<BodyForcing> n[] = {{BodyForcing::Diffuse, "diffuse"},
+                                              {BodyForcing::Interpolated, "interpolated"}};
+  return span_of(n);
+}
+
 std::span<const OptionName<ExtrapolationMethod>> option_names(ExtrapolationMethod) {
   static const OptionName<ExtrapolationMethod> n[] = {{ExtrapolationMethod::Lsq, "lsq"},
                                                       {ExtrapolationMethod::Pde, "pde"}};

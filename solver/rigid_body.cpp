@@ -53,6 +53,8 @@ RigidBodies::RigidBodies(const Config& cfg) : specs_(cfg.solids), t0_(cfg.t_star
   pose_.resize(n);
   load_.resize(n);
   body_momentum_.assign(n, {0.0, 0.0, 0.0});
+  end_.resize(n);
+  region_.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const SolidSpec& s = specs_[k];
     RigidPose& p = pose_[k];
@@ -122,61 +124,223 @@ void RigidBodies::place(int k, const std::vector<std::unique_ptr<Solid>>& solids
   }
 }
 
+namespace {
+
+/// Bilinear interpolation of a cell-centred quantity q(i, j) at (x, y), the stencil clamped
+/// to the grid's cells (an image point beyond a wall takes the nearest row).
+template <class Q>
+double bilinear(const Grid& g, double x, double y, Q&& q) {
+  const double fx = (x - g.x0) / g.dx - 0.5, fy = (y - g.y0) / g.dx - 0.5;
+  int i = int(std::floor(fx)), j = int(std::floor(fy));
+  double a = fx - i, b = fy - j;
+  if (i < 0) { i = 0; a = 0.0; }
+  if (i > g.nx - 2) { i = g.nx - 2; a = 1.0; }
+  if (j < 0) { j = 0; b = 0.0; }
+  if (j > g.ny - 2) { j = g.ny - 2; b = 1.0; }
+  return (1 - a) * (1 - b) * q(i, j) + a * (1 - b) * q(i + 1, j) + (1 - a) * b * q(i, j + 1) + a * b * q(i + 1, j + 1);
+}
+
+}  // namespace
+
+double RigidBodies::weight(int k, const Solid& s, int i, int j, double inv_dx) const {
+  // the forcing weight of a cell: chi (diffuse) or 1 where the cell centre is inside
+  // (interpolated); the moment of inertia and angular momentum of a pinned body use it
+  const double phi = s.phi()(i, j);
+  if (specs_[std::size_t(k)].forcing == BodyForcing::Interpolated) return phi < 0.0 ? 1.0 : 0.0;
+  return std::clamp(0.5 - phi * inv_dx, 0.0, 1.0);
+}
+
 void RigidBodies::force(const std::vector<std::unique_ptr<Solid>>& solids, Field& u, Field& v, const Field& rho,
                         const Field& gxf, const Field& gyf, const Grid& g, double dt) {
-  const double a = g.dx * g.dx;
+  const double a = g.dx * g.dx, inv_dx = 1.0 / g.dx;
+  auto gcx = [&](int gi, int gj) { return 0.5 * (gxf(gi, gj) + gxf(gi + 1, gj)); };
+  auto gcy = [&](int gi, int gj) { return 0.5 * (gyf(gi, gj) + gyf(gi, gj + 1)); };
   for (std::size_t k = 0; k < specs_.size(); ++k) {
     if (!specs_[k].rigid()) continue;
     const Solid& s = *solids[k];
     RigidPose& p = pose_[k];
-    const double inv_dx = 1.0 / g.dx;
-    // the window cells with chi > 0: chi = clamp(1/2 - phi/dx, 0, 1), the sub-cell area
-    // fraction of phi < 0 (as in the solid diagnostics). Not 1 - H(phi) of eq. (3.5): the
-    // forcing is repeated every step, so every cell with chi > 0 ends up moving with the
-    // body and the effective surface sits at the edge of chi's support -- phi = w_T with
-    // the smoothed Heaviside (the circular Couette torque 26% high at R1 = 9.6 dx), phi =
-    // dx/2 here (3% low; tests/test_bodies.cpp)
+    const bool sharp = specs_[k].forcing == BodyForcing::Interpolated;
+    // the cells of the body region (weight w > 0): chi = clamp(1/2 - phi/dx, 0, 1), the
+    // sub-cell area fraction of phi < 0 (as in the solid diagnostics), for the diffuse
+    // forcing -- not 1 - H(phi) of eq. (3.5): the forcing is repeated every step, so every
+    // cell with chi > 0 ends up moving with the body and the effective surface sits at the
+    // edge of chi's support, phi = w_T with the smoothed Heaviside (the circular Couette
+    // torque 26% high at R1 = 9.6 dx), phi = dx/2 here (3% low; tests/test_bodies.cpp).
+    // Interpolated: w = 1 where the cell centre is inside (phi < 0).
     auto each = [&](auto&& f) {
       for (int j = 0; j < s.nj(); ++j)
         for (int i = 0; i < s.ni(); ++i) {
-          const double chi = std::clamp(0.5 - s.phi()(i, j) * inv_dx, 0.0, 1.0);
-          if (chi <= 0.0) continue;
+          const double w = weight(int(k), s, i, j, inv_dx);
+          if (w <= 0.0) continue;
           const int gi = s.i0() + i, gj = s.j0() + j;
-          const double gcx = 0.5 * (gxf(gi, gj) + gxf(gi + 1, gj));
-          const double gcy = 0.5 * (gyf(gi, gj) + gyf(gi, gj + 1));
-          f(gi, gj, chi, rho(gi, gj), g.xc(gi) - p.cx, g.yc(gj) - p.cy, gcx, gcy);
+          f(gi, gj, w, rho(gi, gj), g.xc(gi) - p.cx, g.yc(gj) - p.cy, gcx(gi, gj), gcy(gi, gj));
         }
     };
     if (specs_[k].motion == SolidMotion::Pinned) {
       // the rigid rotation with the angular momentum of the region (no torque from the forcing)
       double num = 0.0, den = 0.0;
-      each([&](int gi, int gj, double chi, double r, double rx, double ry, double gcx, double gcy) {
-        const double ux = u(gi, gj) - dt * gcx, uy = v(gi, gj) - dt * gcy;
-        num += r * chi * (rx * uy - ry * ux);
-        den += r * chi * (rx * rx + ry * ry);
+      each([&](int gi, int gj, double w, double r, double rx, double ry, double gx, double gy) {
+        const double ux = u(gi, gj) - dt * gx, uy = v(gi, gj) - dt * gy;
+        num += r * w * (rx * uy - ry * ux);
+        den += r * w * (rx * rx + ry * ry);
       });
       if (den > 0.0) p.omega = num / den;
     }
-    double dmx = 0, dmy = 0, dl = 0, bmx = 0, bmy = 0, bl = 0;
-    each([&](int gi, int gj, double chi, double r, double rx, double ry, double gcx, double gcy) {
-      const double ubx = p.u - p.omega * ry, uby = p.v + p.omega * rx;
-      const double du = chi * (ubx + dt * gcx - u(gi, gj)), dv = chi * (uby + dt * gcy - v(gi, gj));
+    double dmx = 0, dmy = 0, dl = 0;  // the momentum the forcing adds
+    std::vector<std::pair<int, int>> touched;  // interpolated: the forced cells
+    auto apply = [&](int gi, int gj, double tu, double tv, double c) {  // u <- u + c (target - u)
+      const double r = rho(gi, gj), rx = g.xc(gi) - p.cx, ry = g.yc(gj) - p.cy;
+      const double du = c * (tu - u(gi, gj)), dv = c * (tv - v(gi, gj));
       u(gi, gj) += du;
       v(gi, gj) += dv;
       dmx += r * du;
       dmy += r * dv;
       dl += r * (rx * dv - ry * du);
-      bmx += r * chi * ubx;
-      bmy += r * chi * uby;
-      bl += r * chi * (rx * uby - ry * ubx);
-    });
-    const std::array<double, 3> m = {bmx * a, bmy * a, bl * a};
-    const std::array<double, 3>& m0 = have_momentum_ ? body_momentum_[k] : m;
+    };
+    if (!sharp) {
+      // u <- chi u_t + (1 - chi) u, u_t = u_body + dt G_c
+      each([&](int gi, int gj, double chi, double, double rx, double ry, double gx, double gy) {
+        apply(gi, gj, p.u - p.omega * ry + dt * gx, p.v + p.omega * rx + dt * gy, chi);
+      });
+    } else {
+      // Sharp interpolated forcing (Fadlun et al. 2000; Balaras 2004): a cell whose centre
+      // is inside takes u_body + dt G_c; a fluid cell with a neighbour inside (the interface
+      // cells) takes the velocity linearly interpolated along the normal n = grad phi between
+      // the surface point x_s = x - phi n (the body's velocity) and the image point
+      // x_i = x + h n (h = sqrt(2) dx: for a convex body the image's bilinear stencil has no
+      // cell inside), u = u_b(x_s) + phi/(phi + h) (q(x_i) - u_b(x_s)), plus dt G_c for the
+      // projection to subtract, as inside. q is the velocity after the projection to come:
+      // u - dt G_c for a cell that is not forced, the value the last step's forcing left for
+      // after its projection for a forced one (its present value is the forcing's, not the
+      // flow's), so a steady state is the same for every dt. No cell is relaxed by a fraction: nothing slips by O(dt), and
+      // the no-slip surface is at phi = 0 to second order in dx.
+      const int ni = s.ni(), nj = s.nj(), i0 = s.i0(), j0 = s.j0();
+      auto phi = [&](int i, int j) { return s.phi()(i, j); };
+      auto inside = [&](int i, int j) { return i >= 0 && j >= 0 && i < ni && j < nj && phi(i, j) < 0.0; };
+      auto forced = [&](int gi, int gj) {
+        const int i = gi - i0, j = gj - j0;
+        if (i < 0 || j < 0 || i >= ni || j >= nj) return false;
+        return inside(i, j) || inside(i - 1, j) || inside(i + 1, j) || inside(i, j - 1) || inside(i, j + 1);
+      };
+      const EndVelocity E = end_[k];  // the last step's (end_[k] is replaced below)
+      auto stored = [&](int gi, int gj, int c, double& out) {
+        const int i = gi - E.i0, j = gj - E.j0;
+        if (E.u.empty() || i < 0 || j < 0 || i >= E.ni || j >= E.nj) return false;
+        out = (c == 0 ? E.u : E.v)[std::size_t(j) * std::size_t(E.ni) + std::size_t(i)];
+        return !std::isnan(out);
+      };
+      // q from the field before any cell of this body is changed
+      auto q = [&](int c) {
+        return [&, c](int gi, int gj) {
+          double out;
+          if (forced(gi, gj) && stored(gi, gj, c, out)) return out;
+          return c == 0 ? u(gi, gj) - dt * gcx(gi, gj) : v(gi, gj) - dt * gcy(gi, gj);
+        };
+      };
+      struct Target { int gi, gj; double tu, tv; };
+      std::vector<Target> targets;
+      const double h = std::sqrt(2.0) * g.dx;
+      for (int j = 0; j < nj; ++j)
+        for (int i = 0; i < ni; ++i) {
+          const int gi = i0 + i, gj = j0 + j;
+          if (!forced(gi, gj)) continue;
+          const double x = g.xc(gi), y = g.yc(gj), ph = phi(i, j);
+          double tu, tv;
+          if (ph < 0.0) {
+            const auto ub = p.velocity(x, y);
+            tu = ub[0];
+            tv = ub[1];
+          } else {
+            const int il = std::max(i - 1, 0), ir = std::min(i + 1, ni - 1);
+            const int jl = std::max(j - 1, 0), jr = std::min(j + 1, nj - 1);
+            double nx = (phi(ir, j) - phi(il, j)) / ((ir - il) * g.dx);
+            double ny = (phi(i, jr) - phi(i, jl)) / ((jr - jl) * g.dx);
+            const double nn = std::hypot(nx, ny);
+            if (!(nn > 1e-12)) continue;
+            nx /= nn;
+            ny /= nn;
+            const auto ub = p.velocity(x - ph * nx, y - ph * ny);
+            const double xi = x + h * nx, yi = y + h * ny, c = ph / (ph + h);
+            tu = ub[0] + c * (bilinear(g, xi, yi, q(0)) - ub[0]);
+            tv = ub[1] + c * (bilinear(g, xi, yi, q(1)) - ub[1]);
+          }
+          targets.push_back({gi, gj, tu + dt * gcx(gi, gj), tv + dt * gcy(gi, gj)});
+        }
+      for (const Target& t : targets) {
+        apply(t.gi, t.gj, t.tu, t.tv, 1.0);
+        touched.emplace_back(t.gi, t.gj);
+      }
+      // the velocities the forced cells will have after the projection (if the pressure does
+      // not change), read as q by the next step's forcing; NaN: not forced
+      EndVelocity& En = end_[k];
+      En.i0 = i0;
+      En.j0 = j0;
+      En.ni = ni;
+      En.nj = nj;
+      En.u.assign(std::size_t(ni) * std::size_t(nj), std::nan(""));
+      En.v.assign(En.u.size(), std::nan(""));
+      for (const Target& t : targets) {
+        const std::size_t c = std::size_t(t.gj - j0) * std::size_t(ni) + std::size_t(t.gi - i0);
+        En.u[c] = t.tu - dt * gcx(t.gi, t.gj);
+        En.v[c] = t.tv - dt * gcy(t.gi, t.gj);
+      }
+    }
+    // F = (-(momentum the forcing added) + (change of the region's momentum)) / dt. The
+    // region R is every cell the forcing changes now (weight 1, not chi); the change is
+    // taken cell by cell over these same cells, from the previous step's value, so a cell
+    // that enters or leaves R as the body moves carries no momentum in or out with it. The
+    // velocities are those the projection will leave if the pressure does not change, u -
+    // dt G_c, not the body's: the partly forced cells keep a slip that the next step's
+    // forcing takes back; that momentum was lent by this step's forcing, and counting it
+    // here makes the force the same for a short step as for a full one (it was not: a step
+    // cut short to land on an end time divided the previous step's slip by its own dt; with
+    // weight chi a part (1 - chi)^2 of it stayed). Not with the velocities after the
+    // projection: its pressure increment removes the forcing's divergence in the band by an
+    // impulse that does not scale with dt.
+    RegionState& Q = region_[k];
+    const int ni = s.ni(), nj = s.nj(), i0 = s.i0(), j0 = s.j0();
+    auto before = [&](int gi, int gj, int c, double now) {  // the cell's value one step ago
+      const int i = gi - Q.i0, j = gj - Q.j0;
+      if (Q.u.empty() || i < 0 || j < 0 || i >= Q.ni || j >= Q.nj) {
+        if (have_momentum_) return now;  // outside the last window: not forced, no change counted
+        const auto ub = p.velocity(g.xc(gi), g.yc(gj));  // the first step: the body's velocity
+        return ub[std::size_t(c)];
+      }
+      return (c == 0 ? Q.u : Q.v)[std::size_t(j) * std::size_t(Q.ni) + std::size_t(i)];
+    };
+    double mx = 0, my = 0, ml = 0;
+    auto region = [&](int gi, int gj) {
+      const double r = rho(gi, gj), rx = g.xc(gi) - p.cx, ry = g.yc(gj) - p.cy;
+      const double qx = u(gi, gj) - dt * gcx(gi, gj), qy = v(gi, gj) - dt * gcy(gi, gj);
+      const double dx_ = qx - before(gi, gj, 0, qx), dy_ = qy - before(gi, gj, 1, qy);
+      mx += r * dx_;
+      my += r * dy_;
+      ml += r * (rx * dy_ - ry * dx_);
+    };
+    if (sharp) {
+      for (const auto& c : touched) region(c.first, c.second);
+    } else {
+      each([&](int gi, int gj, double, double, double, double, double, double) { region(gi, gj); });
+    }
+    // this step's values over the whole window, for the next step
+    Q.i0 = i0;
+    Q.j0 = j0;
+    Q.ni = ni;
+    Q.nj = nj;
+    Q.u.resize(std::size_t(ni) * std::size_t(nj));
+    Q.v.resize(Q.u.size());
+    for (int j = 0; j < nj; ++j)
+      for (int i = 0; i < ni; ++i) {
+        const int gi = i0 + i, gj = j0 + j;
+        Q.u[std::size_t(j) * std::size_t(ni) + std::size_t(i)] = u(gi, gj) - dt * gcx(gi, gj);
+        Q.v[std::size_t(j) * std::size_t(ni) + std::size_t(i)] = v(gi, gj) - dt * gcy(gi, gj);
+      }
+    const std::array<double, 3> dm = {mx * a, my * a, ml * a};
     BodyLoad& L = load_[k];
-    L.fx = (-dmx * a + (m[0] - m0[0])) / dt;
-    L.fy = (-dmy * a + (m[1] - m0[1])) / dt;
-    L.torque = (-dl * a + (m[2] - m0[2])) / dt;
-    body_momentum_[k] = m;
+    L.fx = (-dmx * a + dm[0]) / dt;
+    L.fy = (-dmy * a + dm[1]) / dt;
+    L.torque = (-dl * a + dm[2]) / dt;
+    body_momentum_[k] = dm;
   }
   have_momentum_ = true;
 }
@@ -190,6 +354,14 @@ void RigidBodies::save_state(CheckpointWriter& w) const {
                         {"omega", p.omega}, {"fx", load_[k].fx}, {"fy", load_[k].fy}, {"torque", load_[k].torque},
                         {"mx", body_momentum_[k][0]}, {"my", body_momentum_[k][1]}, {"ml", body_momentum_[k][2]}})
       w.put_f64(t + n, x);
+    // the last forcing's cell values (region change, interpolated stencil): a restart
+    // continues bit for bit
+    for (auto [n, W] : {std::pair{"region.", &region_[k]}, {"end.", &end_[k]}}) {
+      for (auto [m, x] : {std::pair{"i0", W->i0}, {"j0", W->j0}, {"ni", W->ni}, {"nj", W->nj}})
+        w.put_i64(t + n + m, x);
+      w.put_f64s(t + n + "u", W->u);
+      w.put_f64s(t + n + "v", W->v);
+    }
   }
   w.put_i64("bodies.have_momentum", have_momentum_ ? 1 : 0);
 }
@@ -204,6 +376,12 @@ void RigidBodies::load_state(CheckpointReader& r) {
                         {"torque", &load_[k].torque}, {"mx", &body_momentum_[k][0]}, {"my", &body_momentum_[k][1]},
                         {"ml", &body_momentum_[k][2]}})
       *x = r.get_f64(t + n);
+    for (auto [n, W] : {std::pair{"region.", &region_[k]}, {"end.", &end_[k]}}) {
+      for (auto [m, x] : {std::pair{"i0", &W->i0}, {"j0", &W->j0}, {"ni", &W->ni}, {"nj", &W->nj}})
+        *x = int(r.get_i64(t + n + m));
+      W->u = r.get_f64s(t + n + "u");
+      W->v = r.get_f64s(t + n + "v");
+    }
   }
   have_momentum_ = r.get_i64("bodies.have_momentum") != 0;
 }

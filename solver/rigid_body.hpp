@@ -22,10 +22,15 @@
 //    so the face velocities stay exactly divergence-free, and the no-slip surface is
 //    located to O(dx) (first order). The density and viscosity still blend with the
 //    smoothed Heaviside like any solid's.
+//  * Interpolated forcing (forcing = "interpolated"; Fadlun et al. 2000, J. Comput. Phys.
+//    161; Balaras 2004, Comput. Fluids 33): sharp -- cells inside (phi < 0) take u_body +
+//    dt G_c, the fluid cells next to the surface the velocity interpolated along the
+//    normal between the surface and an image point (rigid_body.cpp); no O(dt) slip.
 //  * Force on the body from the fluid (reported as solidK_fx, solidK_fy, solidK_torque):
-//        F = -(1/dt) sum rho (u_new - u_old) dx^2 + d/dt sum rho chi u_body dx^2,
-//    the momentum the forcing removes per step plus the rate of change of the body
-//    region's momentum (the torque likewise, about the reference point).
+//        F = -(1/dt) sum rho (u_new - u_old) dx^2 + (1/dt) Delta sum_R rho (u - dt G_c) dx^2,
+//    the momentum the forcing removes per step plus the change of the momentum of the
+//    forced cells R as the projection will leave them (docs/bodies.md: so that a step cut
+//    short gives the force of a full one); the torque likewise, about the reference point.
 //  * fixed: u_body = 0. prescribed: the centre follows path_x(t), path_y(t) (expressions
 //    of t; velocity by a centred difference) and the body turns at rotation_rate(t)
 //    (theta by Simpson's rule per step). pinned: the pivot is fixed; the rotation rate is
@@ -109,6 +114,10 @@ class RigidBodies {
   /// gxf, gyf: the face accelerations the predictor will use; rho: the new density.
   void force(const std::vector<std::unique_ptr<Solid>>& solids, Field& u, Field& v, const Field& rho,
              const Field& gxf, const Field& gyf, const Grid& g, double dt);
+  /// The change over the last step of sum rho (u - dt G_c) dx^2 over the cells body k's
+  /// forcing changed (x, y, angular about its reference point): the force is the momentum
+  /// the forcing removed plus this, over dt (docs/bodies.md)
+  const std::array<double, 3>& region_change(int k) const { return body_momentum_[std::size_t(k)]; }
 
   void save_state(CheckpointWriter& w) const;
   void load_state(CheckpointReader& r);
@@ -118,8 +127,18 @@ class RigidBodies {
   std::vector<RigidPath> paths_;
   std::vector<RigidPose> pose_;
   std::vector<BodyLoad> load_;
-  /// sum rho chi u_body dx^2 (x, y, angular about the reference point) at the last forcing
+  double weight(int k, const Solid& s, int i, int j, double inv_dx) const;
+  /// region_change of the last step
   std::vector<std::array<double, 3>> body_momentum_;
+  /// u - dt G_c over each body's window after the last forcing (the region's momentum then)
+  struct RegionState {
+    int i0 = 0, j0 = 0, ni = 0, nj = 0;
+    std::vector<double> u, v;
+  };
+  std::vector<RegionState> region_;
+  /// interpolated forcing: the velocities the last forcing left for after the projection
+  using EndVelocity = RegionState;
+  std::vector<EndVelocity> end_;
   bool have_momentum_ = false;
   double t0_ = 0.0;
 };

@@ -1042,6 +1042,7 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
     if (const auto k = s.misplaced("motion", motion))
       s.fail(*k, "only used with motion = \"" + s.entry(*k).only.front() + "\" (motion is \"" + motion + "\")");
     const bool rigid = sp.rigid();
+    if (rigid) sp.forcing = s.option<BodyForcing>("forcing");
     // the point a rigid body's rotation refers to (as for the initial omega)
     const double ccx = sh.kind == ShapeKind::Tabulated ? 0.5 * (bb.xmin + bb.xmax) : sh.cx;
     const double ccy = sh.kind == ShapeKind::Tabulated ? 0.5 * (bb.ymin + bb.ymax) : sh.cy;

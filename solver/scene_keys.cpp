@@ -353,6 +353,12 @@ std::vector<KeyDef> build_keys() {
                           "(`\"fixed\"`), moved on a path (`\"prescribed\"`) or pinned at a point and free to rotate "
                           "(`\"pinned\"`); its velocity is imposed in its region and the force on it reported in "
                           "`diagnostics.csv`. A rigid body takes no `mu_s`; its `viscosity` defaults to the fluid's"),
+      only(choice<BodyForcing>("solid", "forcing", ds.forcing,
+                               "how a rigid body's velocity is imposed (docs/bodies.md): `\"diffuse\"` relaxes the "
+                               "cells by their sub-cell fraction (its surface slips by O(dt)); `\"interpolated\"` is "
+                               "sharp: cells inside take the body's velocity, the fluid cells next to the surface the "
+                               "value interpolated along the normal between the surface and an image point"),
+           "motion", {"fixed", "prescribed", "pinned"}),
       only(shown_default(key("solid", "path_x", KT::Expression, {}, {},
                              "x of the centre as an expression of t; must equal `center` at the start time"),
                          "`center` (still)"),
@@ -401,7 +407,7 @@ std::vector<KeyDef> build_keys() {
           "d in cells: the force acts once a gap is below d Δx; also the threshold of the contact events"),
       num("contact", "stiffness", dc.stiffness, ge(0),
           "P, the contact pressure at zero gap, in units of ρ_max U² (independent of the solids' `mu_s`)"),
-      num("contact", "velocity_scale", dc.velocity_scale, ge(0, "0 = automatic"), "U; 0 = automatic"),
+      num("contact", "velocity_scale", dc.velocity_scale, ge(0, "0 = automatic"), "U; 0 = automatic: the initial and free-fall speeds, raised to the fastest solid seen"),
   };
   return k;
 }

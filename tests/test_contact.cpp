@@ -20,6 +20,7 @@
 
 #include "solver/scene.hpp"
 #include "solver/simulation.hpp"
+#include "tests/fixtures/scene_text.hpp"
 #include "tests/test_helpers.hpp"
 
 using namespace refmap;
@@ -375,4 +376,26 @@ TEST(ContactScene, KeysAreValidatedWithOneLineErrors) {
   EXPECT_NE(message({"contact.velocity_scale=-1"}).find("contact.velocity_scale"), std::string::npos);
   EXPECT_NE(message({"contact.stifness=1"}).find("contact.stifness: unknown key"), std::string::npos);
   EXPECT_NE(message({"contact.enabled=1"}).find("contact.enabled: expected true or false"), std::string::npos);
+}
+
+// The contact strength, hence the contact limit of the time step, does not depend on the
+// run's length (solver/contact.hpp): a soft disc in a lid-driven box starting from rest (no
+// initial speed, no gravity) took U = l_x / (t_end - t_start), so two runs differing only in
+// time.end had first steps in the ratio of their lengths (here 10: the contact limit is the
+// smallest at end = 1). Now U = 0 in both until the disc moves (no initial speed, no gravity).
+TEST(ContactTimeStep, FirstStepDoesNotDependOnTheEndTime) {
+  double dt[2], U[2];
+  const double ends[2] = {1.0, 10.0};
+  for (int k = 0; k < 2; ++k) {
+    Config cfg = load_scene_string(box_scene(32, kLidDriven, disc_toml("disc", 0.5, 0.5, 0.2), 0.01, ends[k]),
+                                   "lid_disc.toml");
+    Simulation sim(cfg);
+    ASSERT_NE(sim.contact(), nullptr);
+    U[k] = sim.contact()->velocity_scale();
+    dt[k] = sim.step();
+  }
+  std::printf("first dt %.6g (end = 1), %.6g (end = 10); U = %.3g, %.3g\n", dt[0], dt[1], U[0], U[1]);
+  EXPECT_EQ(dt[0], dt[1]);
+  EXPECT_EQ(U[0], 0.0);
+  EXPECT_EQ(U[1], 0.0);
 }
