@@ -132,6 +132,18 @@ inline void parallel_rows(int j0, int j1, int row_len, F&& f) {
 }
 
 
+/// Sets n values from p to v, in blocks of `block` values over the team (serially below
+/// the work threshold): the whole-field resets of a step (blended density and viscosity,
+/// the contact force) are full passes over memory that one thread cannot saturate.
+template <class T>
+inline void parallel_fill(T* p, std::size_t n, T v, std::size_t block = 4096) {
+  const int nb = int((n + block - 1) / block);
+  parallel_rows(0, nb, int(block), [=](int b) {
+    const std::size_t a = std::size_t(b) * block, e = std::min(n, a + block);
+    std::fill(p + a, p + e, v);
+  });
+}
+
 /// N sums over rows at once: f(j) returns std::array<double, N> of row j's partials;
 /// result k is sum_j f(j)[k] added in row order (same bits for any team size).
 template <int N, class F>

@@ -139,10 +139,10 @@ void Contact::fill_layer(const Solid& a, Dist&& dist, const std::array<int, 4>& 
     }
 }
 
-void Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field& fxf, Field& fyf) {
+bool Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field& fxf, Field& fyf) {
   pair_totals_.clear();
   energy_ = 0.0;
-  if (!force_ || P_ <= 0.0) return;
+  if (!force_ || P_ <= 0.0) return false;
   const int nx = g_.nx, ny = g_.ny;
   const int n = int(solids.size());
   // per solid the boxes of {phi < 0} and {phi < d} (not used across periodic directions,
@@ -270,7 +270,9 @@ void Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field
 
   // applied serially in task order: the face sums and the energy have the bits of a
   // serial run on any number of threads
+  bool wrote = false;
   auto apply = [&](const Layer& l, double cx, double cy, double* tot) {
+    wrote = wrote || !l.x.empty() || !l.y.empty();
     for (const auto& c : l.x) {
       const double f = c.f + cx * c.w;
       fxf(c.gi, c.gj) += f;
@@ -312,6 +314,7 @@ void Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field
     const double a2 = g_.dx * g_.dx;
     for (double q : {ta[0], ta[1], tb[0], tb[1]}) pair_totals_.push_back(q * a2);
   }
+  return wrote;
 }
 
 double Contact::pair_gap(const Solid& a, const Solid& b) const {

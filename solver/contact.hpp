@@ -120,7 +120,8 @@ class Contact {
   /// Adds the contact force density of every pair and every wall on the faces: fxf(i, j)
   /// on the x-face left of cell (i, j) ((nx + 1) x ny), fyf(i, j) on the y-face below it.
   /// On a periodic seam the force is stored at index 0 only.
-  void add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field& fxf, Field& fyf);
+  /// Returns whether any face received a contribution (the fields are left as they were if not).
+  bool add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field& fxf, Field& fyf);
   /// Largest stable dt of the contact spring (1e300 if the force is off).
   double min_dt(double rho_min) const;
 

@@ -139,8 +139,8 @@ void Simulation::impose_prescribed_velocity(double t) {
 
 void Simulation::blend_material_fields() {
   // eq. (3.6): q = q_f + sum_i (1 - H_i) (q_s,i - q_f) for density and viscosity
-  rho_.fill(cfg_.rho_f);
-  mu_.fill(cfg_.mu_f);
+  parallel_fill(rho_.raw(), rho_.raw_size(), cfg_.rho_f);
+  parallel_fill(mu_.raw(), mu_.raw_size(), cfg_.mu_f);
   for (const auto& s : solids_) {
     s->add_blend(rho_, s->spec().density, cfg_.rho_f);
     s->add_blend(mu_, s->spec().viscosity, cfg_.mu_f);
@@ -349,7 +349,8 @@ double Simulation::stable_dt() const {
 
 void Simulation::add_contact_face_accel() {
   // G_f -= beta_f F_f: the contact force per unit volume on each face, over the face density
-  if (!(contact_ && contact_->force_enabled())) return;
+  // nothing to add when no face got a contact force (G_f - beta_f * (+0) is G_f, bit for bit)
+  if (!(contact_ && contact_->force_enabled()) || !contact_force_written_) return;
   const Grid& g = cfg_.grid;
   const Sides sides = face_boundary(cfg_);
   // the boundary faces of a direction: a wall face carries no normal velocity (nothing to
@@ -570,9 +571,14 @@ void Simulation::compute_contact_force() {
   // contact force on the faces of the new configuration (solver/contact.hpp), applied
   // with the pressure gradient and gravity in the balanced-force face accelerations
   ScopedPhase ph(timers_, "contact");
-  cfx_.fill(0.0);
-  cfy_.fill(0.0);
-  contact_->add_force(solids_, cfx_, cfy_);
+  // the force is zero away from the solids' contact layers, i.e. everywhere in most steps:
+  // the fields are cleared only after a step that wrote into them (two full passes over
+  // memory per step otherwise, most of this phase on large grids)
+  if (contact_force_written_) {
+    parallel_fill(cfx_.raw(), cfx_.raw_size(), 0.0);
+    parallel_fill(cfy_.raw(), cfy_.raw_size(), 0.0);
+  }
+  contact_force_written_ = contact_->add_force(solids_, cfx_, cfy_);
 }
 
 void Simulation::force_bodies(double dt) {

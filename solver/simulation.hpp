@@ -179,6 +179,7 @@ class Simulation {
   std::unique_ptr<Contact> contact_;
   std::unique_ptr<RigidBodies> bodies_;    // null unless a solid is rigid
   Field cfx_, cfy_;                        // contact force density of the last step
+  bool contact_force_written_ = true;      // cfx_/cfy_ may be nonzero (compute_contact_force)
   std::unique_ptr<PoissonSolver> poisson_;
   SolveStats last_stats_;
   std::unique_ptr<ImplicitVelocity> implicit_;  ///< implicit stress step (null: explicit)
