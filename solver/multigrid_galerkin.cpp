@@ -3,14 +3,13 @@
 
 #include <omp.h>
 
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "kernels/loop.hpp"
+#include "solver/multigrid_coarse.hpp"
 
 namespace refmap {
 
@@ -22,17 +21,7 @@ namespace {
 constexpr double kCoarseOmega = 1.2;
 }  // namespace
 
-struct GalerkinLevels::Coarse {
-  int nx = 0, ny = 0, n = 0;
-  bool dense = true;
-  std::vector<double> chol;  ///< dense: lower Cholesky factor of -L (+ alpha 1 1^T), row-major
-  std::vector<double> b;
-  Eigen::SparseMatrix<double> A;
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt;
-  Eigen::VectorXd vb, ve;
-};
-
-GalerkinLevels::GalerkinLevels() : coarse_(std::make_unique<Coarse>()) {}
+GalerkinLevels::GalerkinLevels() : coarse_(std::make_unique<CoarseDirect>()) {}
 GalerkinLevels::~GalerkinLevels() = default;
 
 mg::Stencil9 GalerkinLevels::stencil(int l) const {
@@ -135,110 +124,25 @@ void GalerkinLevels::setup(const mg::Stencil& s0, bool sink, int coarse_cells, i
 void GalerkinLevels::build_coarse_solver() {
   const Level& L = levels_.back();
   const mg::Stencil9 s = stencil(num_levels() - 1);
-  Coarse& c = *coarse_;
-  const int nx = L.nx, ny = L.ny, n = nx * ny;
-  c.nx = nx;
-  c.ny = ny;
-  c.n = n;
-  c.dense = n <= 512;
-  c.b.assign(n, 0.0);
-  // -L as (row, col, value) over the 9 neighbours; walls: the index tables point at the
-  // cell itself with coefficient 0
-  auto for_entries = [&](auto&& fn) {
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        for (int dj = -1; dj <= 1; ++dj)
-          for (int di = -1; di <= 1; ++di) {
-            const double a = s.coef((dj + 1) * 3 + di + 1, i, j);
-            if (a == 0.0) continue;
-            const int i2 = di < 0 ? L.nbx.m[i] : di > 0 ? L.nbx.p[i] : i;
-            const int j2 = dj < 0 ? L.nby.m[j] : dj > 0 ? L.nby.p[j] : j;
-            fn(i + nx * j, i2 + nx * j2, -a);
-          }
-  };
-  if (c.dense) {
-    std::vector<double>& A = c.chol;
-    A.assign(std::size_t(n) * n, 0.0);
-    for_entries([&](int k, int m, double v) { A[std::size_t(k) * n + m] += v; });
-    if (!sink_) {
-      double tr = 0.0;
-      for (int k = 0; k < n; ++k) tr += A[std::size_t(k) * n + k];
-      const double alpha = (tr > 0 ? tr / n : 1.0) / n;
-      for (auto& a : A) a += alpha;
-    }
-    for (int k = 0; k < n; ++k) {  // in-place Cholesky (lower triangle)
-      double d = A[std::size_t(k) * n + k];
-      for (int p = 0; p < k; ++p) d -= A[std::size_t(k) * n + p] * A[std::size_t(k) * n + p];
-      if (!(d > 0))
-        throw std::runtime_error("multigrid (galerkin): coarse matrix is not positive definite "
-                                 "(disconnected cells or negative beta?)");
-      d = std::sqrt(d);
-      A[std::size_t(k) * n + k] = d;
-      for (int m = k + 1; m < n; ++m) {
-        double v = A[std::size_t(m) * n + k];
-        for (int p = 0; p < k; ++p) v -= A[std::size_t(m) * n + p] * A[std::size_t(k) * n + p];
-        A[std::size_t(m) * n + k] = v / d;
-      }
-    }
-  } else {
-    std::vector<Eigen::Triplet<double>> trip;
-    trip.reserve(std::size_t(n) * 9);
-    const int pin = sink_ ? -1 : 0;  // without a sink: point 0 pinned, mean removed after
-    for_entries([&](int k, int m, double v) {
-      if (k != pin && m != pin) trip.emplace_back(k, m, v);
-    });
-    if (!sink_) trip.emplace_back(0, 0, 1.0);
-    c.A.resize(n, n);
-    c.A.setFromTriplets(trip.begin(), trip.end());
-    c.llt.compute(c.A);
-    if (c.llt.info() != Eigen::Success)
-      throw std::runtime_error("multigrid (galerkin): sparse Cholesky of the coarse matrix failed");
-    c.vb.resize(n);
-    c.ve.resize(n);
-  }
+  const int nx = L.nx, ny = L.ny;
+  // -L over the 9 neighbours (the sink is in the Galerkin product); walls: the index
+  // tables point at the cell itself with coefficient 0
+  std::vector<CoarseDirect::Entry> e;
+  e.reserve(std::size_t(nx) * ny * 9);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          const double a = s.coef((dj + 1) * 3 + di + 1, i, j);
+          if (a == 0.0) continue;
+          const int i2 = di < 0 ? L.nbx.m[i] : di > 0 ? L.nbx.p[i] : i;
+          const int j2 = dj < 0 ? L.nby.m[j] : dj > 0 ? L.nby.p[j] : j;
+          e.push_back({i + nx * j, i2 + nx * j2, -a});
+        }
+  coarse_->factor(nx, ny, sink_, e, "multigrid (galerkin)");
 }
 
-void GalerkinLevels::coarse_solve(int /*l*/, View x, CView f) {
-  Coarse& c = *coarse_;
-  const int nx = c.nx, ny = c.ny, n = c.n;
-  double mean = 0.0;
-  if (!sink_) {
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) mean += f(i, j);
-    mean /= n;
-  }
-  if (c.dense) {  // (-L) e = -(f - mean)
-    double* b = c.b.data();
-    const double* A = c.chol.data();
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) b[i + nx * j] = mean - f(i, j);
-    for (int k = 0; k < n; ++k) {
-      double v = b[k];
-      const double* row = A + std::size_t(k) * n;
-      for (int p = 0; p < k; ++p) v -= row[p] * b[p];
-      b[k] = v / row[k];
-    }
-    for (int k = n - 1; k >= 0; --k) {
-      double v = b[k];
-      for (int m = k + 1; m < n; ++m) v -= A[std::size_t(m) * n + k] * b[m];
-      b[k] = v / A[std::size_t(k) * n + k];
-    }
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) x(i, j) = b[i + nx * j];
-  } else {
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) c.vb[i + nx * j] = mean - f(i, j);
-    if (!sink_) c.vb[0] = 0.0;
-    c.ve = c.llt.solve(c.vb);
-    double em = 0.0;
-    if (!sink_) {
-      for (Eigen::Index k = 0; k < c.ve.size(); ++k) em += c.ve[k];
-      em /= double(c.ve.size());
-    }
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) x(i, j) = c.ve[i + nx * j] - em;
-  }
-}
+void GalerkinLevels::coarse_solve(int /*l*/, View x, CView f) { coarse_->solve(x, f); }
 
 void GalerkinLevels::cycle(const mg::Stencil& s0, View x, CView f, bool f_cycle, double* res2) {
   cycle(0, s0, x, f, f_cycle, res2);

@@ -20,6 +20,7 @@
 #include "core/field.hpp"
 #include "kernels/multigrid.hpp"
 #include "kernels/multigrid9.hpp"
+#include "solver/multigrid_coarse.hpp"
 
 namespace refmap {
 
@@ -66,8 +67,7 @@ class GalerkinLevels {
   bool sink_ = false, symmetric_ = false;
   int pre_ = 2, post_ = 2, coarse_cells_ = -1;
   double fine_omega_ = 1.0;
-  struct Coarse;
-  std::unique_ptr<Coarse> coarse_;
+  std::unique_ptr<CoarseDirect> coarse_;  ///< the coarsest level's exact solve
 };
 
 }  // namespace refmap

@@ -1,12 +1,11 @@
 // Geometric multigrid hierarchy and the "multigrid" Poisson solver; see poisson_multigrid.hpp.
 #include "solver/poisson_multigrid.hpp"
 
+#include "solver/multigrid_coarse.hpp"
 #include "solver/option_names.hpp"
 
 #include <omp.h>
 
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -317,18 +316,7 @@ bool build_fine_operator(const PoissonOperator& op, Field& tx, Field& ty, Field&
 }
 
 // ------------------------------------------------------------------------------------------
-struct MultigridHierarchy::Coarse {
-  int nx = 0, ny = 0, n = 0;
-  bool dense = true;
-  bool sink = false;  ///< -L + diag(c) is definite: no alpha 1 1^T, no pinned cell, no mean
-  std::vector<double> chol;  ///< dense: lower Cholesky factor of -L + alpha 1 1^T (+ diag c), row-major
-  std::vector<double> b;
-  Eigen::SparseMatrix<double> A;  ///< sparse: -L with cell 0 pinned
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt;
-  Eigen::VectorXd vb, ve;
-};
-
-MultigridHierarchy::MultigridHierarchy() : coarse_(std::make_unique<Coarse>()) {}
+MultigridHierarchy::MultigridHierarchy() : coarse_(std::make_unique<CoarseDirect>()) {}
 MultigridHierarchy::~MultigridHierarchy() = default;
 
 mg::Stencil MultigridHierarchy::stencil(int l) const {
@@ -449,132 +437,34 @@ void MultigridHierarchy::setup(const PoissonOperator& op, const PoissonOptions& 
 
 void MultigridHierarchy::build_coarse_solver() {
   const Level& L = levels_.back();
-  Coarse& c = *coarse_;
-  const int nx = L.nx, ny = L.ny, n = nx * ny;
-  c.nx = nx;
-  c.ny = ny;
-  c.n = n;
-  c.dense = n <= 512;
-  c.sink = sink_;
-  c.b.assign(n, 0.0);
+  const int nx = L.nx, ny = L.ny;
   auto idx = [nx](int i, int j) { return i + nx * j; };
-  // neighbours with coefficient: (k, m, T) for every interior/periodic face once (wall
-  // faces carry T = 0 and couple nothing)
+  // -L (+ diag c): every interior/periodic face once (wall faces carry T = 0 and couple
+  // nothing; a face from a cell to itself, periodic n == 1, does nothing)
   const bool wrap_x = L.sides.periodic_x(), wrap_y = L.sides.periodic_y();
-  auto for_faces = [&](auto&& fn) {
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        // east face i+1 (wraps when periodic), north face j+1
-        if (i + 1 < nx || wrap_x) fn(idx(i, j), idx((i + 1) % nx, j), L.tx(i + 1, j));
-        if (j + 1 < ny || wrap_y) fn(idx(i, j), idx(i, (j + 1) % ny), L.ty(i, j + 1));
-      }
+  std::vector<CoarseDirect::Entry> e;
+  e.reserve(std::size_t(nx) * ny * 9);
+  auto face = [&](int k, int m, double T) {
+    if (k == m) return;
+    e.push_back({k, k, T});
+    e.push_back({m, m, T});
+    e.push_back({k, m, -T});
+    e.push_back({m, k, -T});
   };
-  if (c.dense) {
-    std::vector<double>& A = c.chol;
-    A.assign(std::size_t(n) * n, 0.0);
-    for_faces([&](int k, int m, double T) {
-      if (k == m) return;  // a face from a cell to itself (periodic n == 1) does nothing
-      A[std::size_t(k) * n + k] += T;
-      A[std::size_t(m) * n + m] += T;
-      A[std::size_t(k) * n + m] -= T;
-      A[std::size_t(m) * n + k] -= T;
-    });
-    if (c.sink) {  // definite: -L + diag(c), no null space to lift
-      for (int j = 0; j < ny; ++j)
-        for (int i = 0; i < nx; ++i) A[std::size_t(idx(i, j)) * n + idx(i, j)] += L.c(i, j);
-    } else {
-      double tr = 0.0;
-      for (int k = 0; k < n; ++k) tr += A[std::size_t(k) * n + k];
-      const double alpha = (tr > 0 ? tr / n : 1.0) / n;
-      for (auto& a : A) a += alpha;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      // east face i+1 (wraps when periodic), north face j+1
+      if (i + 1 < nx || wrap_x) face(idx(i, j), idx((i + 1) % nx, j), L.tx(i + 1, j));
+      if (j + 1 < ny || wrap_y) face(idx(i, j), idx(i, (j + 1) % ny), L.ty(i, j + 1));
     }
-    // in-place Cholesky (lower triangle)
-    for (int k = 0; k < n; ++k) {
-      double d = A[std::size_t(k) * n + k];
-      for (int p = 0; p < k; ++p) d -= A[std::size_t(k) * n + p] * A[std::size_t(k) * n + p];
-      if (!(d > 0))
-        throw std::runtime_error("multigrid: coarse matrix is not positive definite "
-                                 "(disconnected cells or negative beta?)");
-      d = std::sqrt(d);
-      A[std::size_t(k) * n + k] = d;
-      for (int m = k + 1; m < n; ++m) {
-        double v = A[std::size_t(m) * n + k];
-        for (int p = 0; p < k; ++p) v -= A[std::size_t(m) * n + p] * A[std::size_t(k) * n + p];
-        A[std::size_t(m) * n + k] = v / d;
-      }
-    }
-  } else {
-    std::vector<Eigen::Triplet<double>> trip;
-    trip.reserve(std::size_t(n) * 5);
-    const int pin = c.sink ? -1 : 0;  // with a sink nothing is pinned
-    for_faces([&](int k, int m, double T) {
-      if (k == m) return;
-      if (k != pin) trip.emplace_back(k, k, T);
-      if (m != pin) trip.emplace_back(m, m, T);
-      if (k != pin && m != pin) {
-        trip.emplace_back(k, m, -T);
-        trip.emplace_back(m, k, -T);
-      }
-    });
-    if (c.sink) {
-      for (int j = 0; j < ny; ++j)
-        for (int i = 0; i < nx; ++i) trip.emplace_back(idx(i, j), idx(i, j), L.c(i, j));
-    } else {
-      trip.emplace_back(0, 0, 1.0);  // pinned cell: x_0 = 0, mean removed afterwards
-    }
-    c.A.resize(n, n);
-    c.A.setFromTriplets(trip.begin(), trip.end());
-    c.llt.compute(c.A);
-    if (c.llt.info() != Eigen::Success)
-      throw std::runtime_error("multigrid: sparse Cholesky of the coarse matrix failed");
-    c.vb.resize(n);
-    c.ve.resize(n);
-  }
+  if (sink_)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) e.push_back({idx(i, j), idx(i, j), L.c(i, j)});
+  coarse_->factor(nx, ny, sink_, e, "multigrid");
 }
 
 void MultigridHierarchy::coarse_solve(int l, View x, CView f) {
-  Coarse& c = *coarse_;
-  const int nx = c.nx, ny = c.ny, n = c.n;
-  double mean = 0.0;  // with a sink the problem is definite: f is solved as it is
-  if (!c.sink) {
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) mean += f(i, j);
-    mean /= n;
-  }
-  // solve (-L) e = -(f - mean)
-  if (c.dense) {
-    double* b = c.b.data();
-    const double* A = c.chol.data();
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) b[i + nx * j] = mean - f(i, j);
-    for (int k = 0; k < n; ++k) {  // forward: L y = b
-      double v = b[k];
-      const double* row = A + std::size_t(k) * n;
-      for (int p = 0; p < k; ++p) v -= row[p] * b[p];
-      b[k] = v / row[k];
-    }
-    for (int k = n - 1; k >= 0; --k) {  // backward: L^T e = y
-      double v = b[k];
-      for (int m = k + 1; m < n; ++m) v -= A[std::size_t(m) * n + k] * b[m];
-      b[k] = v / A[std::size_t(k) * n + k];
-    }
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) x(i, j) = b[i + nx * j];
-  } else {
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) c.vb[i + nx * j] = mean - f(i, j);
-    if (!c.sink) c.vb[0] = 0.0;
-    c.ve = c.llt.solve(c.vb);
-    // mean by a plain loop (Eigen's vectorised mean() trips a false -Wmaybe-uninitialized
-    // of GCC 12 with AVX-512)
-    double em = 0.0;
-    if (!c.sink) {
-      for (Eigen::Index k = 0; k < c.ve.size(); ++k) em += c.ve[k];
-      em /= double(c.ve.size());
-    }
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) x(i, j) = c.ve[i + nx * j] - em;
-  }
+  coarse_->solve(x, f);
   mg::fill_ghosts(stencil(l), x);
 }
 

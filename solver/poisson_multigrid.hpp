@@ -140,8 +140,7 @@ class MultigridHierarchy {
   std::unique_ptr<GalerkinLevels> galerkin_;  ///< coarse levels of "galerkin"
   bool sink_ = false;  ///< the operator has a sink (PoissonOperator::sink with some c > 0)
   int coarse_cells_ = 64;
-  struct Coarse;
-  std::unique_ptr<Coarse> coarse_;
+  std::unique_ptr<CoarseDirect> coarse_;  ///< the coarsest level's exact solve
 };
 
 /// Method "multigrid": repeated V- or F-cycles until ||r||/||rhs|| <= tol.
