@@ -17,31 +17,35 @@ bool bounded(FaceKind k) {
   }
   return true;
 }
-}  // namespace
 
-void helmholtz_faces(CView m, View bx, View by, int nx, int ny, double ax, double ay,
-                     const Sides& sides) {
+/// Face coefficients from fx(i, j) / fy(i, j) (the x face left of / the y face below cell
+/// (i, j)), zero on a bounded side's own faces.
+template <class FX, class FY>
+void faces_from(FX fx, FY fy, View bx, View by, int nx, int ny, const Sides& sides) {
   parallel_rows(0, ny, nx, [&](int j) {
-    for (int i = 0; i <= nx; ++i) bx(i, j) = ax * 0.5 * (m(i - 1, j) + m(i, j));
+    for (int i = 0; i <= nx; ++i) bx(i, j) = fx(i, j);
     // periodic: face nx = mean(m(nx-1), m(nx) = m(0)) = face 0, kept
     if (bounded(sides[Left])) bx(0, j) = 0.0;
     if (bounded(sides[Right])) bx(nx, j) = 0.0;
   });
   parallel_rows(0, ny + 1, nx, [&](int j) {
-    for (int i = 0; i < nx; ++i) by(i, j) = ay * 0.5 * (m(i, j - 1) + m(i, j));
+    for (int i = 0; i < nx; ++i) by(i, j) = fy(i, j);
     if ((j == 0 && bounded(sides[Bottom])) || (j == ny && bounded(sides[Top])))
       for (int i = 0; i < nx; ++i) by(i, j) = 0.0;
   });
 }
 
-void helmholtz_sink(CView rho, CView m, View c, int nx, int ny, double dx, double dt, double ax,
-                    double ay, const Sides& sides, const std::array<bool, 4>& fixed) {
+/// c = rho / dt, plus 2 k / dx^2 in the cells next to a side that fixes the component,
+/// with k = kx(i, j) on left/right and ky(i, j) on bottom/top: the wall face's coefficient
+/// is the boundary cell's (the even mirror of fill_scalar_ghosts, as the explicit operator
+/// sees it).
+template <class KX, class KY>
+void sink_from(CView rho, KX kx, KY ky, View c, int nx, int ny, double dx, double dt,
+               const Sides& sides, const std::array<bool, 4>& fixed) {
   const double inv2 = 1.0 / (dx * dx), idt = 1.0 / dt;
   parallel_rows(0, ny, nx, [&](int j) {
     for (int i = 0; i < nx; ++i) c(i, j) = rho(i, j) * idt;
   });
-  // the wall face's viscosity is the boundary cell's (the even mirror of
-  // fill_scalar_ghosts, as the explicit operator sees it)
   for (int s = 0; s < 4; ++s) {
     switch (sides[Side(s)]) {
       case FaceKind::Periodic:
@@ -51,15 +55,28 @@ void helmholtz_sink(CView rho, CView m, View c, int nx, int ny, double dx, doubl
         if (!fixed[std::size_t(s)]) break;
         if (s == Left || s == Right) {
           const int i = s == Left ? 0 : nx - 1;
-          for (int j = 0; j < ny; ++j) c(i, j) += 2.0 * ax * m(i, j) * inv2;
+          for (int j = 0; j < ny; ++j) c(i, j) += 2.0 * kx(i, j) * inv2;
         } else {
           const int j = s == Bottom ? 0 : ny - 1;
-          for (int i = 0; i < nx; ++i) c(i, j) += 2.0 * ay * m(i, j) * inv2;
+          for (int i = 0; i < nx; ++i) c(i, j) += 2.0 * ky(i, j) * inv2;
         }
         break;
       }
     }
   }
+}
+}  // namespace
+
+void helmholtz_faces(CView m, View bx, View by, int nx, int ny, double ax, double ay,
+                     const Sides& sides) {
+  faces_from([&](int i, int j) { return ax * 0.5 * (m(i - 1, j) + m(i, j)); },
+             [&](int i, int j) { return ay * 0.5 * (m(i, j - 1) + m(i, j)); }, bx, by, nx, ny, sides);
+}
+
+void helmholtz_sink(CView rho, CView m, View c, int nx, int ny, double dx, double dt, double ax,
+                    double ay, const Sides& sides, const std::array<bool, 4>& fixed) {
+  sink_from(rho, [&](int i, int j) { return ax * m(i, j); }, [&](int i, int j) { return ay * m(i, j); }, c, nx,
+            ny, dx, dt, sides, fixed);
 }
 
 void helmholtz_apply(CView x, CView bx, CView by, CView c, View out, int nx, int ny, double dx) {
@@ -75,42 +92,14 @@ void helmholtz_apply(CView x, CView bx, CView by, CView c, View out, int nx, int
 }
 
 void helmholtz_faces_cells(CView kx, CView ky, View bx, View by, int nx, int ny, const Sides& sides) {
-  parallel_rows(0, ny, nx, [&](int j) {
-    for (int i = 0; i <= nx; ++i) bx(i, j) = 0.5 * (kx(i - 1, j) + kx(i, j));
-    if (bounded(sides[Left])) bx(0, j) = 0.0;
-    if (bounded(sides[Right])) bx(nx, j) = 0.0;
-  });
-  parallel_rows(0, ny + 1, nx, [&](int j) {
-    for (int i = 0; i < nx; ++i) by(i, j) = 0.5 * (ky(i, j - 1) + ky(i, j));
-    if ((j == 0 && bounded(sides[Bottom])) || (j == ny && bounded(sides[Top])))
-      for (int i = 0; i < nx; ++i) by(i, j) = 0.0;
-  });
+  faces_from([&](int i, int j) { return 0.5 * (kx(i - 1, j) + kx(i, j)); },
+             [&](int i, int j) { return 0.5 * (ky(i, j - 1) + ky(i, j)); }, bx, by, nx, ny, sides);
 }
 
 void helmholtz_sink_cells(CView rho, CView kx, CView ky, View c, int nx, int ny, double dx,
                           double dt, const Sides& sides, const std::array<bool, 4>& fixed) {
-  const double inv2 = 1.0 / (dx * dx), idt = 1.0 / dt;
-  parallel_rows(0, ny, nx, [&](int j) {
-    for (int i = 0; i < nx; ++i) c(i, j) = rho(i, j) * idt;
-  });
-  for (int s = 0; s < 4; ++s) {
-    switch (sides[Side(s)]) {
-      case FaceKind::Periodic:
-      case FaceKind::Outflow: break;
-      case FaceKind::Inflow:
-      case FaceKind::Wall: {
-        if (!fixed[std::size_t(s)]) break;
-        if (s == Left || s == Right) {
-          const int i = s == Left ? 0 : nx - 1;
-          for (int j = 0; j < ny; ++j) c(i, j) += 2.0 * kx(i, j) * inv2;
-        } else {
-          const int j = s == Bottom ? 0 : ny - 1;
-          for (int i = 0; i < nx; ++i) c(i, j) += 2.0 * ky(i, j) * inv2;
-        }
-        break;
-      }
-    }
-  }
+  sink_from(rho, [&](int i, int j) { return kx(i, j); }, [&](int i, int j) { return ky(i, j); }, c, nx, ny, dx,
+            dt, sides, fixed);
 }
 
 void rate_stress_force(CView du, CView dv, CView qxx, CView qxy, CView qyy, View fx, View fy,
