@@ -214,9 +214,7 @@ void Simulation::solid_force() {
   parallel_items(int(solids_.size()),
                  [&](int k) { return window_work(*solids_[std::size_t(k)], kStressCellCost); },
                  [&](int k) { solids_[std::size_t(k)]->compute_stress(); });
-  sxx_.fill(0.0);
-  sxy_.fill(0.0);
-  syy_.fill(0.0);
+  for (Field* f : {&sxx_, &sxy_, &syy_}) parallel_fill(f->raw(), f->raw_size(), 0.0);
   for (const auto& s : solids_) elastic_energy_ += s->blend_stress_into(sxx_, sxy_, syy_, fx_, fy_);
   if (cfg_.solid_opt.conservative && cfg_.solid_opt.stress_form == StressForm::Cell) {
     for (Field* f : {&sxx_, &sxy_, &syy_}) fill_scalar_ghosts(*f, cfg_.bc);
