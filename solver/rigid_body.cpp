@@ -52,7 +52,7 @@ RigidBodies::RigidBodies(const Config& cfg) : specs_(cfg.solids), t0_(cfg.t_star
   paths_.resize(n);
   pose_.resize(n);
   load_.resize(n);
-  body_momentum_.assign(n, {0.0, 0.0, 0.0});
+  region_change_.assign(n, {0.0, 0.0, 0.0});
   end_.resize(n);
   region_.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -302,7 +302,7 @@ void RigidBodies::force(const std::vector<std::unique_ptr<Solid>>& solids, Field
     auto before = [&](int gi, int gj, int c, double now) {  // the cell's value one step ago
       const int i = gi - Q.i0, j = gj - Q.j0;
       if (Q.u.empty() || i < 0 || j < 0 || i >= Q.ni || j >= Q.nj) {
-        if (have_momentum_) return now;  // outside the last window: not forced, no change counted
+        if (have_region_) return now;  // outside the last window: not forced, no change counted
         const auto ub = p.velocity(g.xc(gi), g.yc(gj));  // the first step: the body's velocity
         return ub[std::size_t(c)];
       }
@@ -340,9 +340,9 @@ void RigidBodies::force(const std::vector<std::unique_ptr<Solid>>& solids, Field
     L.fx = (-dmx * a + dm[0]) / dt;
     L.fy = (-dmy * a + dm[1]) / dt;
     L.torque = (-dl * a + dm[2]) / dt;
-    body_momentum_[k] = dm;
+    region_change_[k] = dm;
   }
-  have_momentum_ = true;
+  have_region_ = true;
 }
 
 void RigidBodies::save_state(CheckpointWriter& w) const {
@@ -352,7 +352,7 @@ void RigidBodies::save_state(CheckpointWriter& w) const {
     const RigidPose& p = pose_[k];
     for (auto [n, x] : {std::pair{"cx", p.cx}, {"cy", p.cy}, {"theta", p.theta}, {"u", p.u}, {"v", p.v},
                         {"omega", p.omega}, {"fx", load_[k].fx}, {"fy", load_[k].fy}, {"torque", load_[k].torque},
-                        {"mx", body_momentum_[k][0]}, {"my", body_momentum_[k][1]}, {"ml", body_momentum_[k][2]}})
+                        {"mx", region_change_[k][0]}, {"my", region_change_[k][1]}, {"ml", region_change_[k][2]}})
       w.put_f64(t + n, x);
     // the last forcing's cell values (region change, interpolated stencil): a restart
     // continues bit for bit
@@ -363,7 +363,7 @@ void RigidBodies::save_state(CheckpointWriter& w) const {
       w.put_f64s(t + n + "v", W->v);
     }
   }
-  w.put_i64("bodies.have_momentum", have_momentum_ ? 1 : 0);
+  w.put_i64("bodies.have_momentum", have_region_ ? 1 : 0);
 }
 
 void RigidBodies::load_state(CheckpointReader& r) {
@@ -373,8 +373,8 @@ void RigidBodies::load_state(CheckpointReader& r) {
     RigidPose& p = pose_[k];
     for (auto [n, x] : {std::pair{"cx", &p.cx}, {"cy", &p.cy}, {"theta", &p.theta}, {"u", &p.u}, {"v", &p.v},
                         {"omega", &p.omega}, {"fx", &load_[k].fx}, {"fy", &load_[k].fy},
-                        {"torque", &load_[k].torque}, {"mx", &body_momentum_[k][0]}, {"my", &body_momentum_[k][1]},
-                        {"ml", &body_momentum_[k][2]}})
+                        {"torque", &load_[k].torque}, {"mx", &region_change_[k][0]}, {"my", &region_change_[k][1]},
+                        {"ml", &region_change_[k][2]}})
       *x = r.get_f64(t + n);
     for (auto [n, W] : {std::pair{"region.", &region_[k]}, {"end.", &end_[k]}}) {
       for (auto [m, x] : {std::pair{"i0", &W->i0}, {"j0", &W->j0}, {"ni", &W->ni}, {"nj", &W->nj}})
@@ -383,7 +383,7 @@ void RigidBodies::load_state(CheckpointReader& r) {
       W->v = r.get_f64s(t + n + "v");
     }
   }
-  have_momentum_ = r.get_i64("bodies.have_momentum") != 0;
+  have_region_ = r.get_i64("bodies.have_momentum") != 0;
 }
 
 }  // namespace refmap

@@ -117,7 +117,7 @@ class RigidBodies {
   /// The change over the last step of sum rho (u - dt G_c) dx^2 over the cells body k's
   /// forcing changed (x, y, angular about its reference point): the force is the momentum
   /// the forcing removed plus this, over dt (docs/bodies.md)
-  const std::array<double, 3>& region_change(int k) const { return body_momentum_[std::size_t(k)]; }
+  const std::array<double, 3>& region_change(int k) const { return region_change_[std::size_t(k)]; }
 
   void save_state(CheckpointWriter& w) const;
   void load_state(CheckpointReader& r);
@@ -129,7 +129,7 @@ class RigidBodies {
   std::vector<BodyLoad> load_;
   double weight(int k, const Solid& s, int i, int j, double inv_dx) const;
   /// region_change of the last step
-  std::vector<std::array<double, 3>> body_momentum_;
+  std::vector<std::array<double, 3>> region_change_;
   /// u - dt G_c over each body's window after the last forcing (the region's momentum then)
   struct RegionState {
     int i0 = 0, j0 = 0, ni = 0, nj = 0;
@@ -139,7 +139,7 @@ class RigidBodies {
   /// interpolated forcing: the velocities the last forcing left for after the projection
   using EndVelocity = RegionState;
   std::vector<EndVelocity> end_;
-  bool have_momentum_ = false;
+  bool have_region_ = false;  ///< region_ holds a previous step (false before the first)
   double t0_ = 0.0;
 };
 

@@ -34,18 +34,25 @@ struct SinkProblem {
   }
 };
 
-SinkProblem helmholtz(int n, bool periodic, double beta, double c) {
+/// An nx x ny problem of constant face coefficient beta (0 on the wall faces unless
+/// periodic), no sink yet.
+SinkProblem uniform_beta(int nx, int ny, bool periodic, double beta) {
   SinkProblem s;
-  s.p = poisson_problem::disc_problem(n, n, 1.0 / n, periodic, periodic, 1.0,
+  s.p = poisson_problem::disc_problem(nx, ny, 1.0 / nx, periodic, periodic, 1.0,
                                       [](double, double) { return 0.0; });
   s.p.beta_x.fill(0.0);
   s.p.beta_y.fill(0.0);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i <= n; ++i)
-      if (periodic || (i > 0 && i < n)) s.p.beta_x(i, j) = beta;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i < n; ++i)
-      if (periodic || (j > 0 && j < n)) s.p.beta_y(i, j) = beta;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i <= nx; ++i)
+      if (periodic || (i > 0 && i < nx)) s.p.beta_x(i, j) = beta;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      if (periodic || (j > 0 && j < ny)) s.p.beta_y(i, j) = beta;
+  return s;
+}
+
+SinkProblem helmholtz(int n, bool periodic, double beta, double c) {
+  SinkProblem s = uniform_beta(n, n, periodic, beta);
   s.sink.resize(n, n);
   s.sink.fill(c);
   return s;
@@ -180,15 +187,7 @@ TEST(PoissonSink, DirichletSideThroughTheSinkIsSecondOrder) {
     std::vector<double> err;
     for (int n : {16, 32, 64, 128}) {
       const int ny = 8;
-      SinkProblem s;
-      s.p = poisson_problem::disc_problem(n, ny, 1.0 / n, false, false, 1.0,
-                                          [](double, double) { return 0.0; });
-      s.p.beta_x.fill(0.0);
-      s.p.beta_y.fill(0.0);
-      for (int j = 0; j < ny; ++j)
-        for (int i = 1; i < n; ++i) s.p.beta_x(i, j) = beta;
-      for (int j = 1; j < ny; ++j)
-        for (int i = 0; i < n; ++i) s.p.beta_y(i, j) = beta;
+      SinkProblem s = uniform_beta(n, ny, false, beta);
       const double h = 1.0 / n;
       s.sink.resize(n, ny);
       s.sink.fill(0.0);

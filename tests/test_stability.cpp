@@ -86,6 +86,14 @@ struct Outcome {
   double e_end = 0.0;        ///< total energy (kinetic + elastic) of the last row
 };
 
+/// The study's "stable" class (bench/stability.py): the run completes, the area drifts by
+/// at most 1 % and the total energy never rises more than 1 % above its start.
+void expect_stable(const Outcome& o) {
+  EXPECT_FALSE(o.failed) << o.failure;
+  EXPECT_LE(o.area_drift, 0.01);
+  EXPECT_LE(o.energy_rise, 0.01);
+}
+
 Outcome run_disc_tgv(const std::string& tag, std::vector<std::string> sets, const char* scene = "disc_tgv.toml") {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("refmap_test_stability_" + tag);
@@ -140,9 +148,7 @@ std::vector<std::string> amplitude_case(double factor, bool conservative = true)
 // sweep a: limit P = 1 at mu_s / rho_s = 100 (cell stress, conservative form)
 TEST(StabilityLimits, SolidTimeStepBelowLimitIsStable) {
   const Outcome o = run_disc_tgv("cfl_0.8", solid_cfl_case("vanleer", 100.0, 0.8));
-  EXPECT_FALSE(o.failed) << o.failure;
-  EXPECT_LE(o.area_drift, 0.01);
-  EXPECT_LE(o.energy_rise, 0.01);
+  expect_stable(o);
 }
 
 TEST(StabilityLimits, SolidTimeStepFarPastLimitFails) {
@@ -179,9 +185,7 @@ TEST(StabilityLimits, SemiImplicitBelowLimitIsStableAndAccurate) {
   std::vector<std::string> sets = semi_implicit_case(100.0, 0.8);
   sets.push_back("time.end=0.7");
   const Outcome o = run_disc_tgv("semi_0.8", sets);
-  EXPECT_FALSE(o.failed) << o.failure;
-  EXPECT_LE(o.area_drift, 0.01);
-  EXPECT_LE(o.energy_rise, 0.01);
+  expect_stable(o);
   // accuracy: the total energy (kinetic + elastic; the two swap many times over the run, the
   // disc's wave period is about 0.015) at t = 0.7 against the explicit run at P = 0.1
   // (3198 steps). Both schemes are first order in dt and err on opposite sides: measured at
@@ -214,9 +218,7 @@ TEST(StabilityLimits, SemiImplicitFarPastLimitFails) {
 // sweep b: limit amplitude = 1 A0 for lsq 2.83 (64^2, to t = 2)
 TEST(StabilityLimits, DeformationBelowLimitIsStable) {
   const Outcome o = run_disc_tgv("amp_0.8", amplitude_case(0.8));
-  EXPECT_FALSE(o.failed) << o.failure;
-  EXPECT_LE(o.area_drift, 0.01);
-  EXPECT_LE(o.energy_rise, 0.01);
+  expect_stable(o);
 }
 
 TEST(StabilityLimits, DeformationFarPastLimitFolds) {
@@ -257,9 +259,7 @@ std::vector<std::string> density_case(double ratio) {
 
 TEST(StabilityLimits, DensityRatioBelowLimitIsStable) {
   const Outcome o = run_disc_tgv("rho_2.4", density_case(2.4));  // 0.8 of the limit 3
-  EXPECT_FALSE(o.failed) << o.failure;
-  EXPECT_LE(o.area_drift, 0.01);
-  EXPECT_LE(o.energy_rise, 0.01);
+  expect_stable(o);
   EXPECT_LE(o.poisson_residual, 1e-9);  // the scene's solver.tol: the multigrid converged every step
   const Outcome light = run_disc_tgv("rho_0.4", density_case(0.4));  // inside the light limit 0.3 (drift 0.8 %)
   EXPECT_FALSE(light.failed) << light.failure;
@@ -313,10 +313,8 @@ std::vector<std::string> impact_case(double v, double stiffness = 20.0) {
 
 TEST(StabilityLimits, ImpactBelowLimitKeepsAGap) {
   const Outcome o = run_disc_tgv("impact_1.6", impact_case(1.6), "wall_microgravity.toml");  // 0.8 of V = 2
-  EXPECT_FALSE(o.failed) << o.failure;
+  expect_stable(o);
   EXPECT_GT(o.min_gap, 0.0);
-  EXPECT_LE(o.area_drift, 0.01);
-  EXPECT_LE(o.energy_rise, 0.01);
 }
 
 TEST(StabilityLimits, ImpactFarPastLimitOverlaps) {
@@ -328,10 +326,8 @@ TEST(StabilityLimits, ImpactFarPastLimitOverlaps) {
 // 40 on (gap 0.42 dx; 2000: 1.8 dx, stable too, with 8 times the steps); 20 and below overlap
 TEST(StabilityLimits, ContactStiffnessAboveLimitKeepsAGap) {
   const Outcome o = run_disc_tgv("stiff_50", impact_case(3.0, 50.0), "wall_microgravity.toml");  // limit / 0.8
-  EXPECT_FALSE(o.failed) << o.failure;
+  expect_stable(o);
   EXPECT_GT(o.min_gap, 0.0);
-  EXPECT_LE(o.area_drift, 0.01);
-  EXPECT_LE(o.energy_rise, 0.01);
 }
 
 TEST(StabilityLimits, ContactStiffnessFarBelowLimitOverlaps) {
@@ -356,10 +352,8 @@ std::vector<std::string> pair_case(double v) {
 TEST(StabilityLimits, SolidPairBelowLimitKeepsAGap) {
   // 0.75 of V = 4 (at 0.8, V = 3.2, the drift is already 0.99 %: it grows with V up to the limit)
   const Outcome o = run_disc_tgv("pair_3", pair_case(3.0), "wall_microgravity.toml");
-  EXPECT_FALSE(o.failed) << o.failure;
+  expect_stable(o);
   EXPECT_GT(o.min_gap, 0.0);
-  EXPECT_LE(o.area_drift, 0.01);
-  EXPECT_LE(o.energy_rise, 0.01);
 }
 
 TEST(StabilityLimits, SolidPairFarPastLimitFails) {
