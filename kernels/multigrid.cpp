@@ -406,16 +406,12 @@ struct RestrictStream {
 /// k-1 by one row: at step j, stage k updates row j - k. Stage k on row r needs stage k-1
 /// on rows r-1..r+1 (done earlier in the same step or before) and must precede stage k+1
 /// on rows r-1..r+1 (done later) -- exactly the order of sequential sweeps, so the result
-/// is bitwise that of `sweeps` separate sweeps. Optional extra stages (struct Pipe):
+/// is bitwise that of `sweeps` separate sweeps. Optional extra stages:
 ///  * pin (prolongation) as stage 0, ahead of the sweeps: x(., r) += P x_c, bitwise
 ///    prolong_add followed by the sweeps;
-///  * a "norm" stage one row behind the last sweep of the first block: with res2 it
-///    accumulates ||f - L x||^2 of that iterate;
-///  * a second block of half-sweeps (sweeps2, first colour c2) behind the norm stage: the
-///    next cycle's pre-smoothing. The norm of row r reads rows r-1..r+1 before the second
-///    block changes them, like any other pair of consecutive stages;
-///  * a last "restrict" stage one row behind the last sweep: with pout it computes
-///    fc = P^T (f - L x) (RestrictStream), bitwise residual_restrict after the sweeps.
+///  * a last "residual" stage one row behind the last sweep: with res2 it accumulates
+///    ||f - L x||^2 of the final iterate; with pout it computes fc = P^T (f - L x)
+///    (RestrictStream), bitwise residual_restrict after the sweeps.
 /// Threads own row chunks [j0, j1). In the pipelined pass thread t does stage k on rows
 /// [j0 + k, j1 - k) (the whole range at the domain walls); the rows left over around each
 /// chunk boundary b (stage k: [b - k, b + k)) form a "valley" which thread t finishes after
@@ -433,40 +429,18 @@ struct PipeOut {
   const Transfer1D* try_;
   View fc;
 };
-struct Pipe {
-  double omega = 1.0;
-  const PipeIn* pin = nullptr;    ///< prolongation stage first
-  int sweeps = 0, c1 = 0;         ///< first block of sweeps and its first colour
-  double* res2 = nullptr;         ///< norm stage after the first block
-  int sweeps2 = 0, c2 = 0;        ///< second block, after the norm stage
-  const PipeOut* pout = nullptr;  ///< restrict stage last
-};
 
-enum class StageKind { Prolong, Sweep, Norm, Restrict };
-
-
-void rbgs_pipeline_walls(const Stencil& s, View x, CView f, const Pipe& pp,
-                         const Scratch* sc = nullptr) {
-  const int ny = s.ny;
-  const int k0 = pp.pin ? 1 : 0;      // first sweep stage
-  const int e1 = k0 + 2 * pp.sweeps;  // end of the first block
-  const int kn = pp.res2 ? e1 : -1;   // norm stage
-  const int b2 = pp.res2 ? e1 + 1 : e1;
-  const int e2 = b2 + 2 * pp.sweeps2;  // end of the second block
-  const int kr = pp.pout ? e2 : -1;    // restrict stage
-  const int stages = e2 + (pp.pout ? 1 : 0);
-  auto kind = [&](int k) {
-    if (k < k0) return StageKind::Prolong;
-    if (k == kn) return StageKind::Norm;
-    if (k == kr) return StageKind::Restrict;
-    return StageKind::Sweep;
-  };
-  auto colour = [&](int k) { return k < e1 ? (pp.c1 + k - k0) & 1 : (pp.c2 + k - b2) & 1; };
-  const PipeIn* pin = pp.pin;
-  const PipeOut* pout = pp.pout;
+void rbgs_pipeline_walls(const Stencil& s, View x, CView f, int sweeps, int c1, double omega,
+                         double* res2, const PipeIn* pin = nullptr,
+                         const PipeOut* pout = nullptr, const Scratch* sc = nullptr) {
+  const int S = 2 * sweeps, ny = s.ny;
+  const int k0 = pin ? 1 : 0;                // first sweep stage
+  const int kres = k0 + S;                   // residual stage (if any)
+  const bool tail = res2 || pout;
+  const int stages = kres + (tail ? 1 : 0);
   int want = team_size(s.threads, ny / (2 * stages + 8));
   if (sc) want = std::min(want, sc->nthreads);
-  RowPartials rows2(pp.res2 ? std::size_t(ny) : 0);  // ||f - L x||^2 of each row
+  RowPartials rows2(res2 ? std::size_t(ny) : 0);  // ||f - L x||^2 of each row
   double* r2 = rows2.data();
   team_region(want, [&](const Team& tm) {
     const int nt = tm.nt, t = tm.t;
@@ -480,36 +454,36 @@ void rbgs_pipeline_walls(const Stencil& s, View x, CView f, const Pipe& pp,
     if (pout) {
       rs.init(s, x, f, *pout->trx, *pout->try_, pout->fc, sc->thread(t));
       ncy = pout->try_->nc;
-      rs.begin(first ? 0 : j0 + kr, 0, ncy);
+      rs.begin(first ? 0 : j0 + kres, 0, ncy);
     }
     auto stage = [&](int k, int r) {
-      switch (kind(k)) {
-        case StageKind::Prolong: prolong_fine_row(s, *pin->trx, *pin->try_, pin->xc, x, r, tmp); break;
-        case StageKind::Sweep: rb_row(s, x, f, r, colour(k), pp.omega); break;
-        case StageKind::Norm: r2[r] = residual_row_norm2(s, x, f, r); break;
-        case StageKind::Restrict: rs.push(r); break;
+      if (k < k0)
+        prolong_fine_row(s, *pin->trx, *pin->try_, pin->xc, x, r, tmp);
+      else if (k < kres)
+        rb_row(s, x, f, r, (c1 + k - k0) & 1, omega);
+      else {
+        if (pout) rs.push(r);
+        if (res2) r2[r] = residual_row_norm2(s, x, f, r);
       }
     };
-    for (int j = j0; j < jend; ++j) {
+    for (int j = j0; j < jend; ++j)
       for (int k = 0; k < stages; ++k) {
         const int r = j - k;
         const int lo = first ? 0 : j0 + k, hi = last ? ny : j1 - k;
         if (r < lo || r >= hi) continue;
         stage(k, r);
       }
-    }
     if (nt > 1) {
       tm.barrier();
       if (!last) {
-        // stage 0 (prolongation or first sweep) has no valley
-        for (int k = 1; k < stages; ++k) {
-          if (kind(k) != StageKind::Restrict) {
-            for (int r = j1 - k; r < j1 + k; ++r) stage(k, r);
-            continue;
-          }
-          // coarse rows touching the fine residual rows [j1 - k, j1 + k) that no
+        for (int k = 1; k < kres; ++k)  // stage 0 (prolongation or first sweep) has no valley
+          for (int r = j1 - k; r < j1 + k; ++r) rb_row(s, x, f, r, (c1 + k - k0) & 1, omega);
+        if (res2)
+          for (int r = j1 - kres; r < j1 + kres; ++r) r2[r] = residual_row_norm2(s, x, f, r);
+        if (pout) {
+          // coarse rows touching the fine residual rows [j1 - kres, j1 + kres) that no
           // thread's pipelined pass covered
-          const int gap_lo = j1 - k, gap_hi = j1 + k;
+          const int gap_lo = j1 - kres, gap_hi = j1 + kres;
           int Ja = 0, lo = 0, hi = -1;
           while (Ja < ncy) {
             restrict_span(*pout->try_, Ja, lo, hi);
@@ -530,7 +504,7 @@ void rbgs_pipeline_walls(const Stencil& s, View x, CView f, const Pipe& pp,
       }
     }
   });
-  if (pp.res2) *pp.res2 = rows2.sum(std::size_t(ny));
+  if (res2) *res2 = rows2.sum(std::size_t(ny));
 }
 
 }  // namespace
@@ -543,12 +517,7 @@ void smooth_rbgs(const Stencil& s, View x, CView f, int sweeps, bool black_first
   }
   const int c1 = black_first ? 1 : 0, c2 = 1 - c1;
   if (!s.sides.periodic_y()) {
-    Pipe pp;
-    pp.omega = omega;
-    pp.sweeps = sweeps;
-    pp.c1 = c1;
-    pp.res2 = res2;
-    rbgs_pipeline_walls(s, x, f, pp);
+    rbgs_pipeline_walls(s, x, f, sweeps, c1, omega, res2);
     return;
   }
   // periodic in y: one sweep per pass, the wrap rows finished after a barrier with the
@@ -581,12 +550,7 @@ void smooth_rbgs_restrict(const Stencil& s, View x, CView f, int sweeps, bool bl
                           const Scratch& sc) {
   if (sweeps > 0 && !s.sides.periodic_y()) {
     const PipeOut po{&trx, &try_, fc};
-    Pipe pp;
-    pp.omega = omega;
-    pp.sweeps = sweeps;
-    pp.c1 = black_first ? 1 : 0;
-    pp.pout = &po;
-    rbgs_pipeline_walls(s, x, f, pp, &sc);
+    rbgs_pipeline_walls(s, x, f, sweeps, black_first ? 1 : 0, omega, nullptr, nullptr, &po, &sc);
     return;
   }
   smooth_rbgs(s, x, f, sweeps, black_first, omega);
@@ -598,41 +562,11 @@ void prolong_smooth_rbgs(const Stencil& s, const Transfer1D& trx, const Transfer
                          const Scratch& sc, double* res2) {
   if (sweeps > 0 && !s.sides.periodic_y()) {
     const PipeIn pi{&trx, &try_, xc};
-    Pipe pp;
-    pp.omega = omega;
-    pp.pin = &pi;
-    pp.sweeps = sweeps;
-    pp.c1 = black_first ? 1 : 0;
-    pp.res2 = res2;
-    rbgs_pipeline_walls(s, x, f, pp, &sc);
+    rbgs_pipeline_walls(s, x, f, sweeps, black_first ? 1 : 0, omega, res2, &pi, nullptr, &sc);
     return;
   }
   prolong_add(s, trx, try_, xc, x, sc);
   smooth_rbgs(s, x, f, sweeps, black_first, omega, res2);
-}
-
-void prolong_smooth_rbgs_restrict(const Stencil& s, const Transfer1D& trx,
-                                  const Transfer1D& try_, CView xc, View x, CView f,
-                                  int post_sweeps, bool post_black_first, int pre_sweeps,
-                                  bool pre_black_first, double omega, View fc,
-                                  const Scratch& sc, double* res2) {
-  if (post_sweeps > 0 && pre_sweeps > 0 && !s.sides.periodic_y()) {
-    const PipeIn pi{&trx, &try_, xc};
-    const PipeOut po{&trx, &try_, fc};
-    Pipe pp;
-    pp.omega = omega;
-    pp.pin = &pi;
-    pp.sweeps = post_sweeps;
-    pp.c1 = post_black_first ? 1 : 0;
-    pp.res2 = res2;
-    pp.sweeps2 = pre_sweeps;
-    pp.c2 = pre_black_first ? 1 : 0;
-    pp.pout = &po;
-    rbgs_pipeline_walls(s, x, f, pp, &sc);
-    return;
-  }
-  prolong_smooth_rbgs(s, trx, try_, xc, x, f, post_sweeps, post_black_first, omega, sc, res2);
-  smooth_rbgs_restrict(s, x, f, pre_sweeps, pre_black_first, omega, trx, try_, fc, sc);
 }
 
 void smooth_jacobi(const Stencil& s, View x, CView f, int sweeps, double omega,

@@ -118,18 +118,6 @@ void prolong_smooth_rbgs(const Stencil& s, const Transfer1D& trx, const Transfer
                          CView xc, View x, CView f, int sweeps, bool black_first, double omega,
                          const Scratch& sc, double* res2 = nullptr);
 
-/// The end of one cycle and the start of the next on this level, in ONE pass when walls
-/// in y ("temporal blocking" across the cycle boundary): prolong_smooth_rbgs (post_sweeps,
-/// *res2 = ||f - L x||^2 of that iterate) followed by smooth_rbgs_restrict (pre_sweeps,
-/// fc = P^T (f - L x) of the pre-smoothed iterate), with the same result bit for bit.
-/// The next cycle's pre-smoothing runs a few rows behind the post-smoothing, after each
-/// row's norm has been taken. Periodic y or a sweep count of 0: the two separate calls.
-void prolong_smooth_rbgs_restrict(const Stencil& s, const Transfer1D& trx,
-                                  const Transfer1D& try_, CView xc, View x, CView f,
-                                  int post_sweeps, bool post_black_first, int pre_sweeps,
-                                  bool pre_black_first, double omega, View fc,
-                                  const Scratch& sc, double* res2);
-
 /// `sweeps` weighted-Jacobi sweeps x <- x + omega D^{-1} (f - L x), one pass per sweep
 /// (old rows kept in per-thread row buffers).
 void smooth_jacobi(const Stencil& s, View x, CView f, int sweeps, double omega,

@@ -512,42 +512,18 @@ void MultigridHierarchy::cycle(int l, View x, CView f, bool f_cycle, double* res
     if (res2) *res2 = mg::residual(stencil(l), x, f, View{});
     return;
   }
-  pre_smooth_restrict(l, x, f);
-  coarse_correction(l, f_cycle);
-  prolong_post_smooth(l, x, f, res2);
-}
-
-void MultigridHierarchy::coarse_correction(int l, bool f_cycle) {
   Level& C = levels_[l + 1];
+  pre_smooth_restrict(l, x, f);
   const mg::Stencil sc = stencil(l + 1);
   mg::fill(sc, C.x.view(), 0.0);
   mg::fill_ghosts(sc, C.x.view());
   // V: one coarse cycle; F: an F-cycle then a V-cycle on the coarse level
   cycle(l + 1, C.x.view(), C.f.cview(), f_cycle, nullptr);
   if (f_cycle) cycle(l + 1, C.x.view(), C.f.cview(), false, nullptr);
+  prolong_post_smooth(l, x, f, res2);
 }
 
 void MultigridHierarchy::cycle(View x, CView f, bool f_cycle, double* res2) { cycle(0, x, f, f_cycle, res2); }
-
-bool MultigridHierarchy::chains() const {
-  return !galerkin_ && !jacobi_ && pre_ > 0 && post_ > 0 && num_levels() > 1 &&
-         !levels_[0].sides.periodic_y();
-}
-
-void MultigridHierarchy::begin_cycle(View x, CView f) { pre_smooth_restrict(0, x, f); }
-
-void MultigridHierarchy::end_cycle(View x, CView f, bool f_cycle, double* res2, bool begin_next) {
-  coarse_correction(0, f_cycle);
-  if (!begin_next) {
-    prolong_post_smooth(0, x, f, res2);
-    return;
-  }
-  const Level& F = levels_[0];
-  mg::prolong_smooth_rbgs_restrict(stencil(0), F.trx, F.try_, levels_[1].x.cview(), x, f, post_,
-                                   /*post_black_first=*/symmetric_, pre_,
-                                   /*pre_black_first=*/false, rb_omega_, levels_[1].f.view(),
-                                   scratch_, res2);
-}
 
 void MultigridHierarchy::precondition(CView r, View z) {
   const mg::Stencil s = stencil(0);
@@ -627,29 +603,12 @@ SolveStats MultigridSolver::solve(const Field& rhs, Field& x) {
   double rel = std::sqrt(mg::residual(s, xv, f0_.cview(), View{})) / bnorm;
   if (opt_.record_history) st.history.push_back(rel);
   const bool f_cycle = opt_.cycle == MgCycle::F;
-  const bool chains = mg_.chains();
   int it = 0;
-  bool begun = false;  // the next cycle's pre-smoothing already ran in the last pass
-  double q = 0.1;      // reduction factor of the last cycle (a guess before the first)
-  while ((rel > opt_.tol || begun) && it < opt_.max_iter) {
+  while (rel > opt_.tol && it < opt_.max_iter) {
     double r2 = 0.0;  // ||f - L x||^2 after the cycle (fused into the last smoothing pass)
-    if (chains) {
-      // Temporal blocking across the cycle boundary: the next cycle's pre-smoothing and
-      // restriction ride in this cycle's last pass over the finest level (one pass
-      // instead of two). Only when the next cycle is sure to be needed -- even a cycle
-      // 20x better than the last one would leave rel above tol -- so the iterates stay
-      // those of separate cycles; when that guess fails the begun cycle is completed
-      // (one cycle more, a smaller residual).
-      if (!begun) mg_.begin_cycle(xv, f0_.cview());
-      begun = rel * q * 0.05 > opt_.tol && it + 1 < opt_.max_iter;
-      mg_.end_cycle(xv, f0_.cview(), f_cycle, &r2, begun);
-    } else {
-      mg_.cycle(xv, f0_.cview(), f_cycle, &r2);
-    }
+    mg_.cycle(xv, f0_.cview(), f_cycle, &r2);
     ++it;
-    const double prev = rel;
     rel = std::sqrt(r2) / bnorm;
-    q = std::min(1.0, rel / prev);
     if (opt_.record_history) st.history.push_back(rel);
     if (!std::isfinite(rel)) break;
   }

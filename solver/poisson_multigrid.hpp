@@ -50,10 +50,7 @@
 // Passes over memory per level and cycle (red-black smoother, walls in y): two -- the
 // pre-smoothing sweeps with the residual restriction fused (mg::smooth_rbgs_restrict), and
 // the prolongation with the post-smoothing sweeps (mg::prolong_smooth_rbgs); the same
-// arithmetic as the separate kernels, so the same iterates bit for bit. MultigridSolver
-// chains its cycles on the finest level (end_cycle with begin_next): the post-smoothing
-// of one cycle and the pre-smoothing of the next share one pass there, so a solve of n
-// cycles reads the finest level about n + 2 times instead of 2n.
+// arithmetic as the separate kernels, so the same iterates bit for bit.
 #include <memory>
 #include <vector>
 
@@ -118,23 +115,11 @@ class MultigridHierarchy {
   void cycle(View x, CView f, bool f_cycle, double* res2 = nullptr);
   /// z = V-cycle applied to r with zero initial guess (symmetric when pre == post).
   void precondition(CView r, View z);
-  /// Cycles on the finest level can be chained: red-black smoothing before and after,
-  /// walls in y, average/harmonic coarse levels. cycle() split in two for that:
-  /// begin_cycle (pre-smoothing and restriction) and end_cycle (the coarse correction,
-  /// prolongation and post-smoothing, res2 as in cycle()); with begin_next, end_cycle's
-  /// pass also does the NEXT cycle's begin_cycle (mg::prolong_smooth_rbgs_restrict), so
-  /// begin, end(true), end(true), ..., end(false) equals that many cycle() calls bit for
-  /// bit with one pass over the finest level per cycle instead of two.
-  bool chains() const;
-  void begin_cycle(View x, CView f);
-  void end_cycle(View x, CView f, bool f_cycle, double* res2, bool begin_next);
 
  private:
   /// One V- or F-cycle from level l down.
   void cycle(int l, View x, CView f, bool f_cycle, double* res2);
   void smooth(int l, View x, CView f, int sweeps, bool post, double* res2);
-  /// Zero initial guess on level l+1 and one V-cycle there (F: an F- then a V-cycle).
-  void coarse_correction(int l, bool f_cycle);
   /// Pre-smoothing on level l and the restricted residual into level l+1's f (fused).
   void pre_smooth_restrict(int l, View x, CView f);
   /// x += P x_{l+1} and post-smoothing on level l (fused), res2 as in cycle().

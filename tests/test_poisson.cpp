@@ -471,12 +471,6 @@ TEST(PoissonKernels, FusedPassesMatchSeparateKernels) {
         mg::prolong_add(s, L0.trx, L0.try_, xc.cview(), xr2.view(), h.scratch());
         double r2ref = 0.0;
         mg::smooth_rbgs(s, xr2.view(), f.cview(), sweeps, black_first, 1.25, &r2ref);
-        // the chained cycle boundary: the post-smoothing above, then the next cycle's
-        // pre-smoothing (another sweep count, red first) and restriction
-        const int pre = sweeps % 3 + 1;
-        Field xr3 = xr2, fcr3(L1.nx, L1.ny, 1);
-        mg::smooth_rbgs(s, xr3.view(), f.cview(), pre, false, 1.25);
-        mg::residual_restrict(s, xr3.cview(), f.cview(), L0.trx, L0.try_, fcr3.view(), h.scratch());
         for (int threads : {1, 2}) {
           mg::Stencil st = s;
           st.threads = threads;
@@ -495,76 +489,8 @@ TEST(PoissonKernels, FusedPassesMatchSeparateKernels) {
           EXPECT_LE(maxdiff(fc, fcr, L1.nx, L1.ny), 1e-14) << what;
           EXPECT_LE(maxdiff(x2, xr2, g.nx, g.ny), 1e-14) << what;
           EXPECT_NEAR(r2, r2ref, 1e-12 * r2ref) << what;
-          Field x3 = x0, fc3(L1.nx, L1.ny, 1);
-          double r3 = 0.0;
-          mg::prolong_smooth_rbgs_restrict(st, L0.trx, L0.try_, xc.cview(), x3.view(), f.cview(),
-                                           sweeps, black_first, pre, false, 1.25, fc3.view(),
-                                           h.scratch(), &r3);
-          EXPECT_LE(maxdiff(x3, xr3, g.nx, g.ny), 1e-14) << what << " chained, pre=" << pre;
-          EXPECT_LE(maxdiff(fc3, fcr3, L1.nx, L1.ny), 1e-14) << what << " chained, pre=" << pre;
-          EXPECT_NEAR(r3, r2ref, 1e-12 * r2ref) << what << " chained, pre=" << pre;
         }
       }
-  }
-}
-
-// MultigridSolver chains its cycles (the next cycle's pre-smoothing in the last pass of
-// the one before): the iterate, the cycle count and the residual history must be those of
-// cycle() called once per cycle until the tolerance is met, on one and two threads, for V
-// and F cycles. (Every value is computed by the same arithmetic in the same order, so
-// bitwise; 1e-14 relative allows for a different FMA contraction.)
-TEST(PoissonMultigrid, ChainedCyclesEqualSeparateCycles) {
-  struct G { int nx, ny; bool px; double ratio; const char* cycle; };
-  for (G g : {G{64, 64, false, 1.0, "V"}, G{96, 80, true, 1000.0, "V"}, G{128, 128, false, 100.0, "F"},
-              G{150, 97, false, 1000.0, "V"}}) {
-    Problem p = poisson_problem::disc_problem(g.nx, g.ny, 1.0 / g.nx, g.px, false, g.ratio, cos_cos);
-    for (int threads : {1, 2}) {
-      PoissonOptions opt = options("multigrid", g.cycle, "rbgs");
-      opt.tol = 1e-9;
-      opt.record_history = true;
-      MultigridSolver solver(opt);
-      solver.setup(p.op());
-      ASSERT_TRUE(solver.hierarchy().chains());
-      Field x(g.nx, g.ny, 1);
-      omp_set_num_threads(threads);
-      const SolveStats st = solver.solve(p.rhs, x);
-      omp_set_num_threads(1);
-      ASSERT_TRUE(st.converged);
-      // the same solve by separate cycles
-      MultigridHierarchy h;
-      h.setup(p.op(), opt);
-      const mg::Stencil s = h.stencil(0);
-      Field xr(g.nx, g.ny, 1), f(g.nx, g.ny, 1);
-      const double bnorm = detail::prepare_rhs(p.op(), s, p.rhs, xr, f.view());
-      mg::fill_ghosts(s, xr.view());
-      std::vector<double> hist;
-      double rel = 1.0;
-      for (int it = 0; it < st.iterations; ++it) {
-        double r2 = 0.0;
-        h.cycle(xr.view(), f.cview(), std::string(g.cycle) == "F", &r2);
-        hist.push_back(rel = std::sqrt(r2) / bnorm);
-      }
-      const std::string what = std::to_string(g.nx) + "x" + std::to_string(g.ny) + " " + g.cycle +
-                               " ratio " + std::to_string(g.ratio) + " threads " +
-                               std::to_string(threads);
-      // the separate cycles converge at the same count: one fewer would not have
-      EXPECT_LE(rel, opt.tol) << what;
-      EXPECT_GT(hist[hist.size() - 2], opt.tol) << what;
-      ASSERT_EQ(st.history.size(), hist.size() + 1) << what;
-      for (std::size_t k = 0; k < hist.size(); ++k)
-        EXPECT_NEAR(st.history[k + 1], hist[k], 1e-12 * hist[k]) << what << " cycle " << k + 1;
-      double m = 0.0;
-      for (int j = 0; j < g.ny; ++j)
-        for (int i = 0; i < g.nx; ++i) m += xr(i, j);
-      m /= double(g.nx) * g.ny;
-      double d = 0.0, big = 0.0;
-      for (int j = 0; j < g.ny; ++j)
-        for (int i = 0; i < g.nx; ++i) {
-          d = std::max(d, std::abs(x(i, j) - (xr(i, j) - m)));
-          big = std::max(big, std::abs(x(i, j)));
-        }
-      EXPECT_LE(d, 1e-12 * big) << what;
-    }
   }
 }
 
