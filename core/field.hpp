@@ -8,17 +8,12 @@
 // face of cell i); y-face fields are nx x (ny+1). Kernels see a Field through View,
 // a pointer to element (0,0) plus the row stride.
 #include <algorithm>
-#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <memory>
 #include <new>
 #include <vector>
-
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 
 namespace refmap {
 
@@ -29,33 +24,12 @@ struct AlignedAllocator {
   template <class U> AlignedAllocator(const AlignedAllocator<U, Align>&) {}
   template <class U> struct rebind { using other = AlignedAllocator<U, Align>; };
   T* allocate(std::size_t n) {
-    const std::size_t bytes = ((n * sizeof(T) + Align - 1) / Align) * Align;
-    if (bytes < kHugeFrom) {
-      void* p = std::aligned_alloc(Align, bytes ? bytes : Align);
-      if (!p) throw std::bad_alloc();
-      return static_cast<T*>(p);
-    }
-    // Large fields on 2 MiB pages where the kernel offers them only on request
-    // (transparent_hugepage = madvise, the Debian default). The start is shifted by a
-    // rotating number of cache lines so that arrays walked side by side by a stencil do not
-    // all map to the same cache sets; the original pointer is kept just in front.
-    static std::atomic<unsigned> colour{0};
-    const std::size_t shift = Align * (1 + 5 * (colour++ % 12));
-    char* base = static_cast<char*>(std::aligned_alloc(kHugePage, bytes + shift));
-    if (!base) throw std::bad_alloc();
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    madvise(base, (bytes + shift) / kHugePage * kHugePage, MADV_HUGEPAGE);
-#endif
-    char* p = base + shift;
-    reinterpret_cast<char**>(p)[-1] = base;
-    return reinterpret_cast<T*>(p);
+    std::size_t bytes = ((n * sizeof(T) + Align - 1) / Align) * Align;
+    void* p = std::aligned_alloc(Align, bytes ? bytes : Align);
+    if (!p) throw std::bad_alloc();
+    return static_cast<T*>(p);
   }
-  void deallocate(T* p, std::size_t n) noexcept {
-    const std::size_t bytes = ((n * sizeof(T) + Align - 1) / Align) * Align;
-    std::free(bytes < kHugeFrom ? static_cast<void*>(p) : reinterpret_cast<char**>(p)[-1]);
-  }
-  static constexpr std::size_t kHugePage = std::size_t(2) << 20;
-  static constexpr std::size_t kHugeFrom = std::size_t(4) << 20;  ///< 2 huge pages or more
+  void deallocate(T* p, std::size_t) noexcept { std::free(p); }
   bool operator==(const AlignedAllocator&) const { return true; }
   bool operator!=(const AlignedAllocator&) const { return false; }
 };
