@@ -332,17 +332,20 @@ double Contact::pair_gap(const Solid& a, const Solid& b) const {
   return any ? gap : sentinel_;
 }
 
-double Contact::wall_gap(const Solid& s, int side) const {
-  if (!wall_[side]) return sentinel_;
-  double gap = sentinel_;
+std::array<double, 4> Contact::wall_gaps(const Solid& s) const {
+  // one pass over the solid's window for all four sides (each cell's phi read once)
+  std::array<double, 4> gap{sentinel_, sentinel_, sentinel_, sentinel_};
   bool any = false;
   for (int j = 0; j < s.nj(); ++j)
     for (int i = 0; i < s.ni(); ++i) {
       const double ph = s.phi()(i, j);
       if (!(ph < s.band())) continue;
-      double dist, nx, ny;
-      side_geometry(g_, side, s.i0() + i, s.j0() + j, dist, nx, ny);
-      gap = any ? std::min(gap, dist + ph) : dist + ph;
+      for (int side = 0; side < 4; ++side) {
+        if (!wall_[side]) continue;
+        double dist, nx, ny;
+        side_geometry(g_, side, s.i0() + i, s.j0() + j, dist, nx, ny);
+        gap[size_t(side)] = any ? std::min(gap[size_t(side)], dist + ph) : dist + ph;
+      }
       any = true;
     }
   return gap;
@@ -396,14 +399,13 @@ void Contact::observe(double t, const std::vector<std::unique_ptr<Solid>>& solid
       [&](int a) {
         long c = 0;
         for (size_t b = size_t(a) + 1; b < n; ++b) c += overlap(*solids[size_t(a)], *solids[b]);
-        for (int side = 0; side < 4; ++side)
-          if (wall_[side]) c += long(solids[size_t(a)]->ni()) * solids[size_t(a)]->nj();
+        if (wall_[0] || wall_[1] || wall_[2] || wall_[3])
+          c += long(solids[size_t(a)]->ni()) * solids[size_t(a)]->nj();
         return c * kContactCellCost;
       },
       [&](int a) {
         for (size_t b = size_t(a) + 1; b < n; ++b) pair_gap_[size_t(a) * n + b] = pair_gap(*solids[size_t(a)], *solids[b]);
-        for (int side = 0; side < 4; ++side)
-          if (wall_[side]) side_gap_[size_t(a)][size_t(side)] = wall_gap(*solids[size_t(a)], side);
+        side_gap_[size_t(a)] = wall_gaps(*solids[size_t(a)]);
       });
   for (size_t a = 0; a < n; ++a)
     for (size_t b = a + 1; b < n; ++b) {

@@ -127,8 +127,9 @@ class Contact {
 
   /// Gap between two solids' zero level sets (sentinel: the domain diagonal).
   double pair_gap(const Solid& a, const Solid& b) const;
-  /// Gap between a solid and one side (sentinel for a periodic side).
-  double wall_gap(const Solid& s, int side) const;
+  /// Gaps between a solid and the four sides (left, right, bottom, top; sentinel for a
+  /// side without wall contact, e.g. periodic or open).
+  std::array<double, 4> wall_gaps(const Solid& s) const;
   double sentinel() const { return sentinel_; }
 
   /// After each step: gaps, contact state and events. diag[i]: Solid::diagnostics of
