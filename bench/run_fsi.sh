@@ -8,8 +8,8 @@
 #   CASES=fsi3 END=4 bash bench/run_fsi.sh
 #
 # The tip comes from markers.csv, which refmap writes with each VTK frame (docs/tracers.md);
-# the scenes write a frame every 0.02 (FSI2) or 0.01 (FSI3), 25 or 19 samples per period of
-# the lift. To keep the disk use bounded
+# the scenes write a frame every 0.02 (FSI2) or 0.005 (FSI3), 25 or 38 samples per period of
+# the lift (half that per period of u_x and the drag). To keep the disk use bounded
 # this script deletes the frames as they come, except every 50th (for snapshots).
 # Knobs: BIN (default build/refmap), RAW (run directories, default /tmp/refmap_fsi),
 # CASES (fsi2 fsi3), END (override time.end), THREADS (default 1), WINDOW (seconds at the end
