@@ -13,7 +13,13 @@ per VTK frame) and diagnostics.csv. Outputs, over the window [t_end - WINDOW, t_
    force on it.
 Each signal is reported as Turek & Hron do: mean = (max + min) / 2, amplitude = (max - min) / 2
 over the window, frequency = 1 / (mean spacing of its upward crossings of the mean).
-Usage: fsi_summary.py RUN_DIR CASE RHO_S [WINDOW] -> CSV rows on stdout (quantity, ours, reference).
+SMOOTH (seconds, default 0: none): the forces are first averaged over a centred window of that
+length, to take out the per-step noise of the cylinder's forcing force (oscillations far faster
+than the benchmark's 2-11 Hz) that would otherwise set max - min.
+T_END (default: the run's last time): end of the window, for a run whose last stretch is not
+periodic (e.g. one that went unstable).
+Usage: fsi_summary.py RUN_DIR CASE RHO_S [WINDOW [SMOOTH [T_END]]] -> CSV rows on stdout
+(quantity, ours, reference).
 """
 import csv
 import sys
@@ -42,35 +48,54 @@ def stats(t, s):
     return mean, amp, freq, len(ups)
 
 
+def moving_average(t, s, width):
+    """centred running mean of s over |t' - t| <= width / 2 (shorter at the window's ends)"""
+    out, lo, hi, acc = [], 0, 0, 0.0
+    for k in range(len(t)):
+        while hi < len(t) and t[hi] <= t[k] + 0.5 * width:
+            acc += s[hi]
+            hi += 1
+        while t[lo] < t[k] - 0.5 * width:
+            acc -= s[lo]
+            lo += 1
+        out.append(acc / (hi - lo))
+    return out
+
+
 def main():
     run, case, rho_s = sys.argv[1], sys.argv[2], float(sys.argv[3])
     window = float(sys.argv[4]) if len(sys.argv) > 4 else 2.0
+    smooth = float(sys.argv[5]) if len(sys.argv) > 5 else 0.0
     m = read(run + "/markers.csv")
     d = read(run + "/diagnostics.csv")
-    t_end = d["time"][-1]
+    t_end = float(sys.argv[6]) if len(sys.argv) > 6 else d["time"][-1]
     t0 = t_end - window
-    tm = [t for t in m["t"] if t >= t0]
-    ux = [x - 0.6 for t, x in zip(m["t"], m["x"]) if t >= t0]
-    uy = [y - 0.2 for t, y in zip(m["t"], m["y"]) if t >= t0]
+    tm = [t for t in m["t"] if t0 <= t <= t_end]
+    ux = [x - 0.6 for t, x in zip(m["t"], m["x"]) if t0 <= t <= t_end]
+    uy = [y - 0.2 for t, y in zip(m["t"], m["y"]) if t0 <= t <= t_end]
     td = d["time"]
     px = [rho_s * a * u for a, u in zip(d["solid1_area"], d["solid1_u"])]
     py = [rho_s * a * v for a, v in zip(d["solid1_area"], d["solid1_v"])]
     drag, lift, tf = [], [], []
     for k in range(1, len(td) - 1):
-        if td[k] < t0:
+        if td[k] < t0 - smooth or td[k] > t_end + smooth:
             continue
         h = td[k + 1] - td[k - 1]
         drag.append(d["solid0_fx"][k] + (px[k + 1] - px[k - 1]) / h)
         lift.append(d["solid0_fy"][k] + (py[k + 1] - py[k - 1]) / h)
         tf.append(td[k])
+    if smooth > 0:
+        drag, lift = moving_average(tf, drag, smooth), moving_average(tf, lift, smooth)
+    inside = [k for k, t in enumerate(tf) if t0 <= t <= t_end]  # the padding only fed the means
+    tf, drag, lift = [tf[k] for k in inside], [drag[k] for k in inside], [lift[k] for k in inside]
     w = csv.writer(sys.stdout, lineterminator="\n")
     w.writerow(["case", "quantity", "mean", "amplitude", "frequency", "crossings", "ref_mean", "ref_amplitude",
-                "ref_frequency", "window_start", "t_end"])
+                "ref_frequency", "window_start", "t_end", "force_smoothing"])
     for name, t, s in (("ux", tm, ux), ("uy", tm, uy), ("drag", tf, drag), ("lift", tf, lift)):
         mean, amp, freq, n = stats(t, s)
         r = REF[case][name]
         w.writerow([case, name, f"{mean:.5g}", f"{amp:.5g}", f"{freq:.4g}", n, r[0], r[1], r[2], f"{t0:.4g}",
-                    f"{t_end:.4g}"])
+                    f"{t_end:.4g}", smooth])
 
 
 if __name__ == "__main__":

@@ -18,6 +18,7 @@
 #include "solver/probes.hpp"
 #include "solver/progress.hpp"
 #include "solver/simulation.hpp"
+#include "solver/step_landing.hpp"
 #include "solver/stop_signal.hpp"
 #include "solver/tracers.hpp"
 #include "solver/vtk.hpp"
@@ -399,9 +400,8 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
     }
     if (cfg.max_steps > 0 && sim.steps() >= cfg.max_steps) break;
     double dt = cfg.dt_fixed > 0.0 ? cfg.dt_fixed : sim.stable_dt();
-    dt = std::min(dt, cfg.t_end - sim.time());
-    if (out.frames() && next_frame < cfg.t_end && next_frame - sim.time() < dt)
-      dt = std::max(next_frame - sim.time(), 1e-300);
+    dt = landing_step(dt, cfg.t_end - sim.time(), eps_t);
+    if (out.frames() && next_frame < cfg.t_end) dt = landing_step(dt, next_frame - sim.time(), eps_t);
     steady.before_step(sim);
     const long step0 = sim.steps();
     const double t0 = sim.time();
