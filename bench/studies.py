@@ -232,8 +232,9 @@ def read_ref(path):
     return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
 
 
-def read_vti_velocity(path):
-    """(nx, ny, x0, y0, dx, time, u, v) from a refmap .vti (raw appended, UInt64 headers)"""
+def read_vti_fields(path, names):
+    """time, (x0, y0, dx) and the named cell fields of a refmap .vti (raw appended, UInt64
+    headers): each an array (ny, nx) or (ny, nx, components)"""
     with open(path, "rb") as f:
         data = f.read()
     head_end = data.index(b"<AppendedData")
@@ -243,10 +244,21 @@ def read_vti_velocity(path):
     x0, y0, _ = [float(v) for v in re.search(r'Origin="([^"]+)"', head).group(1).split()]
     dx = float(re.search(r'Spacing="([^"]+)"', head).group(1).split()[0])
     time = float(re.search(r'Name="TIME"[^>]*>([^<]+)<', head).group(1))
-    off = int(re.search(r'Name="velocity"[^>]*offset="(\d+)"', head).group(1))
-    start = data.index(b"_", head_end) + 1 + off
-    nbytes = int(np.frombuffer(data, dtype="<u8", count=1, offset=start)[0])
-    vel = np.frombuffer(data, dtype="<f8", count=nbytes // 8, offset=start + 8).reshape(ny, nx, 3)
+    base = data.index(b"_", head_end) + 1
+    out = {}
+    for name in names:
+        off = int(re.search(r'Name="%s"[^>]*offset="(\d+)"' % name, head).group(1))
+        n = int(np.frombuffer(data, dtype="<u8", count=1, offset=base + off)[0]) // 8
+        a = np.frombuffer(data, dtype="<f8", count=n, offset=base + off + 8)
+        out[name] = a.reshape(ny, nx) if n == nx * ny else a.reshape(ny, nx, n // (nx * ny))
+    return time, (x0, y0, dx), out
+
+
+def read_vti_velocity(path):
+    """(nx, ny, x0, y0, dx, time, u, v) from a refmap .vti"""
+    time, (x0, y0, dx), f = read_vti_fields(path, ("velocity",))
+    vel = f["velocity"]
+    ny, nx = vel.shape[:2]
     return nx, ny, x0, y0, dx, time, vel[:, :, 0], vel[:, :, 1]
 
 
