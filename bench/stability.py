@@ -83,7 +83,8 @@ POISSON_TOL = 1e-9       # the scenes' solver.tol (relative residual)
 COLS = ["sweep", "scene", "method", "stress_discretisation", "conservative", "xi_advection",
         "extrapolation", "lsq_radius", "param", "value", "param2", "value2", "outcome",
         "t_event", "step_event", "measure", "measure_value", "cause", "max_stretch",
-        "min_dt", "p_effective", "poisson_iter_mean", "poisson_iter_max", "steps", "wall_s"]
+        "min_dt", "p_effective", "poisson_iter_mean", "poisson_iter_max", "steps", "wall_s",
+        "energy_late_growth"]
 
 
 # ------------------------------------------------------------------ one run
@@ -222,6 +223,11 @@ def result_row(job):
             row["poisson_iter_mean"] = float(np.mean(pit))
             row["poisson_iter_max"] = int(np.max(pit))
         row["steps"] = int(d["step"][-1])
+        # growth over the run's second half (largest total energy there / its value at the
+        # middle row): tells a start-up rise that then decays (<= 1) from a growing mode (> 1)
+        e = d["total_energy"] + d.get("contact_energy", 0.0)
+        if outcome != "stopped" and len(e) > 4 and e[len(e) // 2] > 0:
+            row["energy_late_growth"] = float(np.max(e[len(e) // 2:]) / e[len(e) // 2])
     return row
 
 
@@ -282,6 +288,19 @@ def jobs_a(quick):
                                 sets=semi_sets(k) + ["grid.nx=32", "grid.ny=32", "time.end=100",
                                                      "time.max_steps=400", "output.vtk=false",
                                                      f"solid.0.mu_s={mu:g}", f"time.dt_max={dt_max!r}"]))
+    # both implicit solid terms with their coefficient reaching 2 cells further into the fluid
+    # than the stress (time.solid_implicit_reach = 2, docs/implicit.md)
+    for name, sets in ((semi_name(0.5) + " reach 2", semi_sets(0.5)), (uc_name("cell") + " reach 2", uc_sets("cell"))):
+        for mu in stiff:
+            for p in ps_si:
+                dt_max = p * (1.0 / 32) / math.sqrt(2.0 * mu)
+                out.append(dict(sweep="a", method=name, stress_discretisation="cell", conservative=True,
+                                xi_advection="vanleer", extrapolation="lsq", lsq_radius=2.83,
+                                param="solid_cfl", value=p, param2="mu_s/rho_s", value2=mu, mu_s=mu,
+                                tag=f"a/reach2_{'uc' if 'upper' in name else 'semi'}_mu{mu:g}_P{p:g}",
+                                sets=sets + ["time.solid_implicit_reach=2", "grid.nx=32", "grid.ny=32",
+                                             "time.end=100", "time.max_steps=400", "output.vtk=false",
+                                             f"solid.0.mu_s={mu:g}", f"time.dt_max={dt_max!r}"]))
     # the upper-convected solid stress (time.solid_stress = "upper_convected", docs/implicit.md),
     # P imposed the same way; with the cell and the face stress discretisation (the implicit
     # operator is the compact face one, the explicit cell form is not)

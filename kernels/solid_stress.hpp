@@ -50,15 +50,16 @@ double max_wave_modulus(const M& model, CView sxx, CView sxy, CView syy, CView p
 /// kernels/helmholtz.hpp, docs/implicit.md): q(i0+i, j0+j) += scale G0 (1 - H(phi)) b on
 /// the cells with phi < w_t, b read back from the stored stress (model.strain) and G0 the
 /// model's tangent modulus at rest (2 mu_s for neo-Hookean, whose stress 2 mu_s (b - I)
-/// changes by exactly 2 mu_s db). Blended with 1 - H like the stress, eq. (3.6).
+/// changes by exactly 2 mu_s db). Blended with 1 - H(phi - reach) (eq. 3.6 for reach = 0,
+/// the stress's blend; reach > 0, a length, extends it into the fluid: docs/implicit.md).
 template <ConstitutiveModel M>
 void blend_rate_coefficients(const M& model, CView sxx, CView sxy, CView syy, CView phi, int ni,
-                             int nj, double w_t, double scale, View qxx, View qxy, View qyy,
-                             int i0, int j0) {
+                             int nj, double w_t, double reach, double scale, View qxx, View qxy,
+                             View qyy, int i0, int j0) {
   const double g0 = scale * model.wave_modulus({1.0, 0.0, 1.0});
   parallel_rows(0, nj, ni, [&](int j) {
     for (int i = 0; i < ni; ++i) {
-      const double ph = phi(i, j);
+      const double ph = phi(i, j) - reach;
       if (!(ph < w_t)) continue;
       const double s = g0 * (1.0 - smoothed_heaviside(ph, w_t));
       const Sym2 b = model.strain({sxx(i, j), sxy(i, j), syy(i, j)});

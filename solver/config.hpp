@@ -193,6 +193,9 @@ struct Config {
   ViscousTime viscous_time = ViscousTime::Explicit;        ///< time.viscous
   SolidStressTime solid_time = SolidStressTime::Explicit;  ///< time.solid_stress
   double solid_implicit_k = 0.5;  ///< time.solid_implicit_k: k of eta = k G dt (stable for k >= 1/4)
+  /// time.solid_implicit_reach: cells by which the implicit solid coefficient's blend
+  /// 1 - H(phi - reach dx) reaches further into the fluid than the stress's (docs/implicit.md)
+  double solid_implicit_reach = 0.0;
   int solid_rate_sweeps = 1;  ///< time.solid_rate_sweeps: outer block Gauss-Seidel sweeps of the upper-convected step (1: cross terms lagged)
   /// time.implicit_tol: relative residual of the implicit velocity solve (the velocity
   /// change d over a step; solver/implicit_step.hpp); looser than the pressure's solver.tol

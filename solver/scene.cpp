@@ -780,6 +780,7 @@ void parse_time(const Ctx& ctx, const Table& top, Config& cfg) {
   cfg.viscous_time = t.option<ViscousTime>("viscous");
   cfg.solid_time = t.option<SolidStressTime>("solid_stress");
   cfg.solid_implicit_k = t.number("solid_implicit_k");
+  cfg.solid_implicit_reach = t.number("solid_implicit_reach");
   cfg.solid_rate_sweeps = t.integer("solid_rate_sweeps");
   cfg.implicit_tol = t.number("implicit_tol");
 }
@@ -939,6 +940,19 @@ void parse_contact(const Ctx& ctx, const Table& top, Config& cfg) {
                 ") cells (the level sets are only known within the band), got " + fmt_num(o.range));
   o.stiffness = c.number("stiffness");
   o.velocity_scale = c.number("velocity_scale");
+}
+
+/// The implicit solid coefficient's blend 1 - H(phi - reach dx) must vanish where phi is
+/// capped at the band's edge (phi = band), or it would reach cells whose phi is unknown.
+void check_implicit_reach(const Ctx& ctx, const Table& top, const Config& cfg) {
+  const double limit = cfg.solid_opt.band - cfg.solid_opt.transition;
+  if (cfg.solid_implicit_reach <= limit) return;
+  const toml::table* tp = top.table("time", false);
+  if (!tp) return;  // the key was not given (its default, 0, is always valid)
+  Table t(ctx, *tp, "time", "time");
+  t.fail("solid_implicit_reach", "must be <= solids.band - solids.transition = " + fmt_num(limit) +
+                                     " cells (the implicit blend must end inside the extrapolated band), got " +
+                                     fmt_num(cfg.solid_implicit_reach));
 }
 
 void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
@@ -1335,6 +1349,7 @@ Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>&
   parse_probes(ctx, top, cfg);
   parse_tracers(ctx, top, cfg);
   parse_solids_options(ctx, top, cfg);  // after parse_solver: the solids need cfg.flow
+  check_implicit_reach(ctx, top, cfg);  // after parse_solids_options: checked against the band
   parse_solids(ctx, top, cfg);
   parse_contact(ctx, top, cfg);  // after parse_solids_options: the range is checked against the band
   check_start_state(ctx, top, cfg);

@@ -197,6 +197,11 @@ std::vector<KeyDef> build_keys() {
                               "time-step limit (docs/implicit.md)"),
       num("time", "solid_implicit_k", d.solid_implicit_k, gt(0),
           "k of the semi-implicit solid stress: eta = k G dt (stable for k >= 1/4, docs/implicit.md)"),
+      num("time", "solid_implicit_reach", d.solid_implicit_reach, ge(0, "cells"),
+          "cells by which the implicit solid term (semi_implicit or upper_convected) reaches further into the "
+          "fluid than the stress: its coefficient is blended with 1 - H(phi - reach dx) instead of 1 - H(phi); at "
+          "most solids.band - solids.transition. 2 keeps a disc in a fluid bounded to about 8x (semi_implicit) "
+          "or 4x (upper_convected) the explicit step, at some cost in accuracy (docs/implicit.md)"),
       integer("time", "solid_rate_sweeps", d.solid_rate_sweeps, in(1, false, 100, false),
               "outer block Gauss-Seidel sweeps (u, then v) of solid_stress = \"upper_convected\": the first "
               "without its cross terms (b_xy and the other component's derivatives: lagged), each further "

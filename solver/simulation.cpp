@@ -539,8 +539,10 @@ void Simulation::implicit_viscosity(double dt) {
   if (cfg_.viscous_time == ViscousTime::Implicit) mimp_ = mu_;
   else mimp_.fill(0.0);
   if (cfg_.solid_time == SolidStressTime::SemiImplicit)
-    for (const auto& s : solids_)  // blended like the stress, eq. (3.6)
-      if (s->spec().mu_s > 0.0) s->add_blend(mimp_, cfg_.solid_implicit_k * s->wave_modulus() * dt, 0.0);
+    for (const auto& s : solids_)  // blended like the stress, eq. (3.6), reaching reach cells further out
+      if (s->spec().mu_s > 0.0)
+        s->add_blend(mimp_, cfg_.solid_implicit_k * s->wave_modulus() * dt, 0.0,
+                     cfg_.solid_implicit_reach * cfg_.grid.dx);
   fill_scalar_ghosts(mimp_, cfg_.bc);
 }
 
@@ -553,8 +555,8 @@ void Simulation::rate_coefficients(double dt) {
     with_constitutive_model(s->spec(), [&](const auto& model) {
       blend_rate_coefficients(model, s->stress_xx().cview(), s->stress_xy().cview(),
                               s->stress_yy().cview(), s->phi().cview(), s->ni(), s->nj(),
-                              s->transition(), dt, qxx_.view(), qxy_.view(), qyy_.view(), s->i0(),
-                              s->j0());
+                              s->transition(), cfg_.solid_implicit_reach * cfg_.grid.dx, dt, qxx_.view(),
+                              qxy_.view(), qyy_.view(), s->i0(), s->j0());
     });
   }
   for (Field* f : {&qxx_, &qxy_, &qyy_}) fill_scalar_ghosts(*f, cfg_.bc);

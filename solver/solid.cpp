@@ -223,12 +223,12 @@ void Solid::fit_window(bool force) {
   ++rewindows_;
 }
 
-void Solid::add_blend(Field& out, double q_s, double q_f) const {
+void Solid::add_blend(Field& out, double q_s, double q_f, double reach) const {
   const double dq = q_s - q_f;
   if (dq == 0.0) return;
   parallel_rows(0, nj_, ni_, [&](int j) {
     for (int i = 0; i < ni_; ++i) {
-      const double ph = phi_(i, j);
+      const double ph = phi_(i, j) - reach;
       if (ph >= wt_) continue;
       out(i0_ + i, j0_ + j) += (1.0 - smoothed_heaviside(ph, wt_)) * dq;
     }

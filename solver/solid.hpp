@@ -81,8 +81,9 @@ class Solid {
 
   // --- mixture ---------------------------------------------------------------------
   /// Adds (1 - H) (q_s - q_f) to `out` over the window (density or viscosity blending,
-  /// eq. 3.6: q = q_f + sum_i (1 - H_i)(q_s,i - q_f)).
-  void add_blend(Field& out, double q_s, double q_f) const;
+  /// eq. 3.6: q = q_f + sum_i (1 - H_i)(q_s,i - q_f)). reach > 0 (a length) blends with
+  /// 1 - H(phi - reach) instead: the semi-implicit solid coefficient (docs/implicit.md).
+  void add_blend(Field& out, double q_s, double q_f, double reach = 0.0) const;
   /// Stress of the solid's constitutive model (kernels/constitutive.hpp) on its window;
   /// conservative: adds (1-H) sigma_s to the global tensor (sxx, sxy, syy); non-conservative: adds (1-H) div sigma_s to the
   /// force (fx, fy). Returns the elastic energy.

@@ -710,6 +710,8 @@ TEST_F(SceneFiles, SceneSolidErrorsMore) {
   EXPECT_HAS(error_of(base + "[solids]\nband = 1\n"), "solids.band: must be > 1");
   EXPECT_HAS(error_of(base + "[solids]\nband = 3.5\n"), "solids.band: must be > solids.transition + 1 = 4");
   EXPECT_HAS(error_of(base + "[solids]\nband = 5\ntransition = 4\n"), "solids.transition: must be < solids.band - 1 = 4");
+  EXPECT_HAS(error_of(base + "[solids]\nband = 5\ntransition = 3\n", {"time.solid_implicit_reach=2.5"}),
+             "time.solid_implicit_reach: must be <= solids.band - solids.transition = 2 cells");
   EXPECT_HAS(error_of(base + "[solids]\ntransition = 0\n"), "solids.transition: must be > 0");
   EXPECT_HAS(error_of(base + "[solids]\nsolid_cfl = 8.5\n"), "solids.solid_cfl: must be in (0, 8]");
   EXPECT_HAS(error_of(base + "[solids]\nlsq_radius = 2\n"), "solids.lsq_radius: must be in [2.83, 5.74]");
