@@ -182,13 +182,18 @@ def first_restitution(d):
     return float("nan")
 
 
-def bounce(args, w, cases=((1e3, ("explicit", "semi_implicit")), (1e4, ("explicit", "semi_implicit")),
-                          (1e5, ("semi_implicit",)))):
+def bounce(args, w, cases=((1e3, ("explicit", "semi_implicit", "semi_implicit+reach2")),
+                          (1e4, ("explicit", "semi_implicit", "semi_implicit+reach2")),
+                          (1e5, ("explicit", "semi_implicit", "semi_implicit+reach2")))):
+    # "+reach2": time.solid_implicit_reach = 2 (docs/implicit.md, "The reach")
     for mu_s, variants in cases:
         for variant in variants:
             sets = ["time.end=0.5", "output.interval=0", "solid[0].mu_s=%g" % mu_s]
+            stress, _, reach = variant.partition("+reach")
             if variant != "explicit":
-                sets += ["time.viscous=implicit", "time.solid_stress=" + variant]
+                sets += ["time.viscous=implicit", "time.solid_stress=" + stress]
+            if reach:
+                sets += ["time.solid_implicit_reach=" + reach]
             info = run(args, "scenes/bounce_stiff.toml", "bounce_%g_%s" % (mu_s, variant), sets)
             dg = info.get("diag", [])
             a0 = float(dg[0]["solid0_area"]) if dg else float("nan")
@@ -220,7 +225,8 @@ def upper_convected(args, w):
     couette(args, w, (("upper_convected", UC),))
     shear(args, w, ("upper_convected",))
     disc_tgv(args, w, (("upper_convected", UC),))
-    bounce(args, w, ((1e3, ("upper_convected",)), (1e4, ("upper_convected",)), (1e5, ("upper_convected",))))
+    bounce(args, w, ((1e3, ("upper_convected", "upper_convected+reach2")), (1e4, ("upper_convected", "upper_convected+reach2")),
+                     (1e5, ("upper_convected", "upper_convected+reach2"))))
 
 
 def main():

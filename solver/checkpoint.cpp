@@ -143,6 +143,7 @@ void Contact::save_state(CheckpointWriter& w) const {
 void Contact::load_state(CheckpointReader& r) {
   gap_solid_ = r.get_f64s("contact.gap_solid");
   gap_wall_ = r.get_f64s("contact.gap_wall");
+  observed_ = true;
   get_pods(r, "contact.wall_state", wall_state_);
   get_pods(r, "contact.pair_state", pair_state_);
   pair_totals_ = r.get_f64s("contact.pair_totals");

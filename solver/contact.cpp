@@ -80,6 +80,14 @@ double Contact::min_dt(double rho_min) const {
   return 0.5 / std::sqrt(omega2);
 }
 
+bool Contact::clear_of_contact(double speed, double dt) const {
+  if (!observed_) return false;
+  const double closing = speed * dt;
+  for (size_t i = 0; i < gap_wall_.size(); ++i)
+    if (!(gap_wall_[i] - d_ > closing + g_.dx && gap_solid_[i] - d_ > 2.0 * closing + g_.dx)) return false;
+  return true;
+}
+
 double Contact::phi_at(const Solid& s, int gi, int gj) const {
   if (sides_.periodic_x()) gi = ((gi % g_.nx) + g_.nx) % g_.nx;
   if (sides_.periodic_y()) gj = ((gj % g_.ny) + g_.ny) % g_.ny;
@@ -381,6 +389,7 @@ void Contact::observe(double t, const std::vector<std::unique_ptr<Solid>>& solid
   for (size_t i = 0; i < n && i < diag.size(); ++i) see_speed(std::hypot(diag[i].u, diag[i].v));
   // hysteresis: a contact starts when the gap falls below d, ends when it exceeds d + dx/4
   const double d_on = d_, d_off = d_ + 0.25 * g_.dx;
+  observed_ = true;
   for (size_t i = 0; i < n; ++i) {
     gap_solid_[i] = sentinel_;
     gap_wall_[i] = sentinel_;

@@ -54,6 +54,10 @@
 // THE TIME STEP. The layer is a spring of stiffness dp_c/ds = 3P/d at s = 0 acting on a
 // layer of mass rho h per unit area, rho >= (rho_s + rho_f)/2 there: dt <= 0.5 / omega,
 // omega^2 = 2 * 3P / (d rho h) (the factor 2 is a margin for s < 0, where it stiffens).
+// That is about 0.1 dx / U, so it bound most steps of every scene with solids although the
+// force is zero while every gap exceeds d; it is applied only in a step that can close a
+// gap to d (clear_of_contact: a surface moves at most (|u| + |v|)_max dt in a step, since xi
+// is advected with the velocity at the step's start).
 //
 // PERIODIC BOUNDARIES. Contact is computed on the global grid from the solids' windows.
 // A solid that spans a periodic direction has a wrapped window (its phi and normals are
@@ -124,6 +128,12 @@ class Contact {
   bool add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field& fxf, Field& fyf);
   /// Largest stable dt of the contact spring (1e300 if the force is off).
   double min_dt(double rho_min) const;
+  /// Whether no contact force can act in a step of length dt: every gap of the last
+  /// observe() exceeds the range d by more than the surfaces can close in the step (a
+  /// surface moves at most `speed` dt, xi being advected with the velocity at the step's
+  /// start; two solids close at twice that) plus one cell (the gaps are sampled at cell
+  /// centres). False before the first observe().
+  bool clear_of_contact(double speed, double dt) const;
 
   /// Gap between two solids' zero level sets (sentinel: the domain diagonal).
   double pair_gap(const Solid& a, const Solid& b) const;
@@ -195,6 +205,7 @@ class Contact {
   double U_ = 0.0, P_unit_ = 0.0;  ///< U and stiffness rho_max (P = P_unit_ U^2)
   bool auto_U_ = true;             ///< contact.velocity_scale = 0: U follows see_speed
   std::vector<double> gap_solid_, gap_wall_;
+  bool observed_ = false;  ///< gaps measured at least once (clear_of_contact)
   std::vector<std::array<WallState, 4>> wall_state_;
   std::vector<PairState> pair_state_;  // i < j, index i * n + j
   std::vector<ContactEvent> events_;

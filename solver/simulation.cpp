@@ -318,7 +318,16 @@ double Simulation::stable_dt() const {
     if (s.type == BcType::MovingWall) umax = std::max(umax, std::abs(s.velocity));
   umax = std::max(umax, max_inflow_speed(cfg_.bc, g, t_));
   double dt = cfg_.dt_max;
-  if (umax > 0.0) dt = std::min(dt, cfg_.cfl * g.dx / umax);
+  const double gmag = std::hypot(cfg_.gx, cfg_.gy);
+  if (gmag > 0.0) {
+    // with gravity, the speed at the step's end, umax + |g| dt, in the Courant number:
+    // dt (umax + |g| dt) <= cfl dx, so a step from rest is bounded too (cfl dx / umax is
+    // infinite there; the contact spring's limit used to cover that, see below)
+    const double c = cfg_.cfl * g.dx;
+    dt = std::min(dt, 2.0 * c / (umax + std::sqrt(umax * umax + 4.0 * gmag * c)));
+  } else if (umax > 0.0) {
+    dt = std::min(dt, cfg_.cfl * g.dx / umax);
+  }
   // viscous: the discrete operator of kernels/viscous.cpp (full stress mu (grad u +
   // grad u^T), needed for the blended viscosity) has its largest eigenvalue 12 mu/(rho dx^2)
   // (the checkerboard mode: 8 from the compact normal stress 2 mu u_xx, 4 from mu u_yy),
@@ -340,7 +349,10 @@ double Simulation::stable_dt() const {
     // at least the mean of the solid's and the fluid's
     double rho_min = 1e300;
     for (const auto& s : solids_) rho_min = std::min(rho_min, 0.5 * (s->spec().density + cfg_.rho_f));
-    dt = std::min(dt, contact_->min_dt(rho_min));
+    // the spring only acts on gaps below its range: its limit (dt ~ 0.1 dx / U) is needed
+    // only in a step that can bring a surface into range (solver/contact.hpp)
+    const double dt_contact = contact_->min_dt(rho_min);
+    if (dt > dt_contact && !contact_->clear_of_contact(umax, dt)) dt = dt_contact;
   }
   return dt;
 }

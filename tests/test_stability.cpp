@@ -265,10 +265,15 @@ TEST(StabilityLimits, DeformationBelowLimitIsStable) {
   expect_stable(o);
 }
 
-TEST(StabilityLimits, DeformationFarPastLimitFolds) {
+TEST(StabilityLimits, DeformationFarPastLimitFails) {
+  // the map folds or the energy blows up first, depending on the step sequence (with the
+  // contact spring's limit in every step the map folded at t = 0.2025; since that limit
+  // applies only near contact, the blow-up is caught first, at t = 0.2028)
   const Outcome o = run_disc_tgv("amp_8", amplitude_case(8.0));
   ASSERT_TRUE(o.failed);
-  EXPECT_NE(o.failure.find("reference map folded in solid 'disc'"), std::string::npos) << o.failure;
+  EXPECT_TRUE(o.failure.find("reference map folded in solid 'disc'") != std::string::npos ||
+              o.failure.find("the solution is blowing up") != std::string::npos)
+      << o.failure;
 }
 
 // the paper's Fig. 14: the non-conservative form fails already at the scene's amplitude

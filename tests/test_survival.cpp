@@ -251,9 +251,10 @@ double vti_time(const fs::path& p) {
 }  // namespace
 
 TEST_F(Survival, HealthStopWritesTheFailingStateOutsideTheSeries) {
-  // a disc 1000 times lighter than the fluid (mu_s / rho_s kept at the scene's 0.5) folds
-  // its reference map at 32^2 (bench/stability.py, sweep c): the health check stops the run
-  // and frame_failed.vti holds the state it refused, at that step's time
+  // a disc 1000 times lighter than the fluid (mu_s / rho_s kept at the scene's 0.5) fails at
+  // 32^2 (bench/stability.py, sweep c): its map folds or its energy blows up (which one
+  // the health checks see first depends on the step sequence), the run stops and
+  // frame_failed.vti holds the state it refused, at that step's time
   const std::vector<std::string> common{"--threads", "1", "--quiet", "--set", "grid.nx=32", "--set", "grid.ny=32",
                                         "--set", "time.end=1", "--set", "solid.0.density=0.001", "--set",
                                         "solid.0.mu_s=0.0005"};
@@ -266,7 +267,9 @@ TEST_F(Survival, HealthStopWritesTheFailingStateOutsideTheSeries) {
   const fs::path out = dir_ / "folded";
   const Result r = run(args(out, true), dir_ / "f");
   ASSERT_EQ(r.code, 3) << r.err;
-  EXPECT_NE(r.err.find("reference map folded in solid 'disc'"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.err.find("reference map folded in solid 'disc'") != std::string::npos ||
+              r.err.find("the solution is blowing up") != std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find("the failing state: " + (out / "frame_failed.vti").string()), std::string::npos) << r.err;
   ASSERT_TRUE(fs::exists(out / "frame_failed.vti"));
   // its time is the failing step's: the last row of diagnostics.csv (written for the
