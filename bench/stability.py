@@ -277,45 +277,33 @@ def jobs_a(quick):
     ks, ps_si = ([0.5], [0.5, 1, 2, 4, 16, 64]) if quick else \
         ([0.5, 0.1, 2], [0.25, 0.5, 0.75, 1, 1.5, 2, 4, 8, 16, 32, 64, 128])
     for k in ks:
-        name = semi_name(k)
-        for mu in stiff:
-            for p in ps_si:
-                dt_max = p * (1.0 / 32) / math.sqrt(2.0 * mu)
-                out.append(dict(sweep="a", method=name, stress_discretisation="cell", conservative=True,
-                                xi_advection="vanleer", extrapolation="lsq", lsq_radius=2.83,
-                                param="solid_cfl", value=p, param2="mu_s/rho_s", value2=mu, mu_s=mu,
-                                tag=f"a/semi_k{k:g}_mu{mu:g}_P{p:g}",
-                                sets=semi_sets(k) + ["grid.nx=32", "grid.ny=32", "time.end=100",
-                                                     "time.max_steps=400", "output.vtk=false",
-                                                     f"solid.0.mu_s={mu:g}", f"time.dt_max={dt_max!r}"]))
+        out += implicit_p_jobs(semi_name(k), "cell", semi_sets(k), f"semi_k{k:g}", stiff, ps_si)
     # both implicit solid terms with their coefficient reaching 2 cells further into the fluid
     # than the stress (time.solid_implicit_reach = 2, docs/implicit.md)
-    for name, sets in ((semi_name(0.5) + " reach 2", semi_sets(0.5)), (uc_name("cell") + " reach 2", uc_sets("cell"))):
-        for mu in stiff:
-            for p in ps_si:
-                dt_max = p * (1.0 / 32) / math.sqrt(2.0 * mu)
-                out.append(dict(sweep="a", method=name, stress_discretisation="cell", conservative=True,
-                                xi_advection="vanleer", extrapolation="lsq", lsq_radius=2.83,
-                                param="solid_cfl", value=p, param2="mu_s/rho_s", value2=mu, mu_s=mu,
-                                tag=f"a/reach2_{'uc' if 'upper' in name else 'semi'}_mu{mu:g}_P{p:g}",
-                                sets=sets + ["time.solid_implicit_reach=2", "grid.nx=32", "grid.ny=32",
-                                             "time.end=100", "time.max_steps=400", "output.vtk=false",
-                                             f"solid.0.mu_s={mu:g}", f"time.dt_max={dt_max!r}"]))
+    reach = ["time.solid_implicit_reach=2"]
+    out += implicit_p_jobs(semi_name(0.5) + " reach 2", "cell", semi_sets(0.5) + reach, "reach2_semi", stiff, ps_si)
+    out += implicit_p_jobs(uc_name("cell") + " reach 2", "cell", uc_sets("cell") + reach, "reach2_uc", stiff, ps_si)
     # the upper-convected solid stress (time.solid_stress = "upper_convected", docs/implicit.md),
     # P imposed the same way; with the cell and the face stress discretisation (the implicit
     # operator is the compact face one, the explicit cell form is not)
     for s_form in ("cell", "face"):
-        name = uc_name(s_form)
-        for mu in stiff:
-            for p in ps_si:
-                dt_max = p * (1.0 / 32) / math.sqrt(2.0 * mu)
-                out.append(dict(sweep="a", method=name, stress_discretisation=s_form, conservative=True,
-                                xi_advection="vanleer", extrapolation="lsq", lsq_radius=2.83,
-                                param="solid_cfl", value=p, param2="mu_s/rho_s", value2=mu, mu_s=mu,
-                                tag=f"a/uc_{s_form}_mu{mu:g}_P{p:g}",
-                                sets=uc_sets(s_form) + ["grid.nx=32", "grid.ny=32", "time.end=100",
-                                                        "time.max_steps=400", "output.vtk=false",
-                                                        f"solid.0.mu_s={mu:g}", f"time.dt_max={dt_max!r}"]))
+        out += implicit_p_jobs(uc_name(s_form), s_form, uc_sets(s_form), f"uc_{s_form}", stiff, ps_si)
+    return out
+
+
+def implicit_p_jobs(name, s_form, sets, tag, stiff, ps):
+    """Sweep a for a method without a solid time-step limit of its own: P imposed as
+    time.dt_max = P dx / sqrt(2 mu_s / rho_s) on 32^2."""
+    out = []
+    for mu in stiff:
+        for p in ps:
+            dt_max = p * (1.0 / 32) / math.sqrt(2.0 * mu)
+            out.append(dict(sweep="a", method=name, stress_discretisation=s_form, conservative=True,
+                            xi_advection="vanleer", extrapolation="lsq", lsq_radius=2.83,
+                            param="solid_cfl", value=p, param2="mu_s/rho_s", value2=mu, mu_s=mu,
+                            tag=f"a/{tag}_mu{mu:g}_P{p:g}",
+                            sets=sets + ["grid.nx=32", "grid.ny=32", "time.end=100", "time.max_steps=400",
+                                         "output.vtk=false", f"solid.0.mu_s={mu:g}", f"time.dt_max={dt_max!r}"]))
     return out
 
 
