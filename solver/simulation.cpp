@@ -318,13 +318,21 @@ double Simulation::stable_dt() const {
     if (s.type == BcType::MovingWall) umax = std::max(umax, std::abs(s.velocity));
   umax = std::max(umax, max_inflow_speed(cfg_.bc, g, t_));
   double dt = cfg_.dt_max;
+  // gravity acts on rho - rho_f (Algorithm 1 step 5): a solid accelerates by at most
+  // |g| |rho_s - rho_f| / rho_s (a light one rises faster than |g|), the fluid by none;
+  // |g| itself is kept as a floor
   const double gmag = std::hypot(cfg_.gx, cfg_.gy);
-  if (gmag > 0.0) {
-    // with gravity, the speed at the step's end, umax + |g| dt, in the Courant number:
-    // dt (umax + |g| dt) <= cfl dx, so a step from rest is bounded too (cfl dx / umax is
+  double accel = gmag;
+  if (gmag > 0.0)
+    for (const auto& s : solids_)
+      if (!s->spec().rigid())  // a rigid body's motion is imposed
+        accel = std::max(accel, gmag * std::abs(s->spec().density - cfg_.rho_f) / s->spec().density);
+  if (accel > 0.0) {
+    // with gravity, the speed at the step's end, umax + a dt, in the Courant number:
+    // dt (umax + a dt) <= cfl dx, so a step from rest is bounded too (cfl dx / umax is
     // infinite there; the contact spring's limit used to cover that, see below)
     const double c = cfg_.cfl * g.dx;
-    dt = std::min(dt, 2.0 * c / (umax + std::sqrt(umax * umax + 4.0 * gmag * c)));
+    dt = std::min(dt, 2.0 * c / (umax + std::sqrt(umax * umax + 4.0 * accel * c)));
   } else if (umax > 0.0) {
     dt = std::min(dt, cfg_.cfl * g.dx / umax);
   }

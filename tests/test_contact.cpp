@@ -399,3 +399,56 @@ TEST(ContactTimeStep, FirstStepDoesNotDependOnTheEndTime) {
   EXPECT_EQ(U[0], 0.0);
   EXPECT_EQ(U[1], 0.0);
 }
+
+// The spring's time-step limit (solver/contact.hpp) applies only in a step that can bring a
+// surface into the contact range d: far from contact the step is set by the other limits
+// (here the viscous one, 2.3x the spring's), near contact by the spring.
+TEST(ContactTimeStep, SpringLimitOnlyInStepsThatCanCloseAGap) {
+  const double dx = 1.0 / 64;
+  auto scene_with_gap = [&](double gap_cells) {
+    // disc b at a known gap from disc a (as in ContactGap above), both soft enough that
+    // their own limit does not bind; a fixed contact velocity scale, so the spring is on
+    const double D = 0.15 + 0.12 + gap_cells * dx, theta = 0.37;
+    char c[128];
+    std::snprintf(c, sizeof c, "solid[1].center=[%.17g, %.17g]", 0.3 + D * std::cos(theta), 0.4 + D * std::sin(theta));
+    return load_scene_string(kGapScene, "gaps.toml",
+                             {c, "solid[0].mu_s=1", "solid[1].mu_s=1", "contact.velocity_scale=1"});
+  };
+  {
+    Simulation sim(scene_with_gap(5.0));  // d = 2.5 dx: 2.5 dx to spare (+-0.1 dx sampling)
+    const Contact& c = *sim.contact();
+    // closing 2 speed dt + dx: 2 dx at dt = dx / 2 (clear), 3 dx at dt = dx (not)
+    EXPECT_TRUE(c.clear_of_contact(1.0, 0.5 * dx));
+    EXPECT_FALSE(c.clear_of_contact(1.0, 1.0 * dx));
+    const double spring = c.min_dt(1.0);
+    const double dt = sim.step();  // the moving lid: (|u| + |v|)_max = 1
+    std::printf("far: dt %.6g, spring limit %.6g\n", dt, spring);
+    EXPECT_GT(dt, 2.0 * spring);
+    EXPECT_DOUBLE_EQ(dt, 0.9 * dx * dx / (6.0 * 0.01));  // the viscous limit
+  }
+  {
+    Simulation sim(scene_with_gap(3.0));  // 0.5 dx to spare: a step of 0.004 can close it
+    const double dt = sim.step();
+    EXPECT_DOUBLE_EQ(dt, sim.contact()->min_dt(1.0));
+  }
+}
+
+// With gravity the advective bound uses the speed at the step's end, dt (umax + a dt) <=
+// cfl dx, a = |g| max(1, |rho_s - rho_f| / rho_s) (docs/method.md): a step from rest is
+// sqrt(cfl dx / a), not unbounded (the spring's limit, which capped it before, no longer
+// applies far from contact). A light disc (rho_s = 0.25) rises at up to 3 |g|.
+TEST(ContactTimeStep, StepFromRestUnderGravityIsBounded) {
+  const double dx = 1.0 / 64;
+  for (double rho : {10.0, 0.25}) {
+    const std::string r = std::to_string(rho);
+    Config cfg = load_scene_string(kGapScene, "gaps.toml",
+                                   {"boundary.top=\"no_slip\"", "gravity.g=[0.0, -10.0]", "fluid.viscosity=1e-5",
+                                    "solid[1].center=[0.7, 0.7]", "solid[0].mu_s=1e-4", "solid[1].mu_s=1e-4",
+                                    "solid[0].density=" + r, "solid[1].density=" + r});
+    Simulation sim(cfg);
+    const double dt = sim.step();
+    const double a = 10.0 * std::max(1.0, std::abs(rho - 1.0) / rho);
+    std::printf("rho_s %g: first dt %.6g\n", rho, dt);
+    EXPECT_NEAR(dt, std::sqrt(0.5 * dx / a), 1e-12);
+  }
+}
