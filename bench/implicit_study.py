@@ -182,25 +182,33 @@ def first_restitution(d):
     return float("nan")
 
 
-def bounce(args, w, cases=((1e3, ("explicit", "semi_implicit", "semi_implicit+reach2")),
-                          (1e4, ("explicit", "semi_implicit", "semi_implicit+reach2")),
-                          (1e5, ("explicit", "semi_implicit", "semi_implicit+reach2")))):
-    # "+reach2": time.solid_implicit_reach = 2 (docs/implicit.md, "The reach")
+RC = "semi_implicit+reach2+cfl8"  # the reach with the implicit stress's own step cap P = 8
+
+
+def bounce(args, w, cases=((1e3, ("explicit", "semi_implicit", "semi_implicit+reach2", RC)),
+                          (1e4, ("explicit", "semi_implicit", "semi_implicit+reach2", RC, RC + "+specific")),
+                          (1e5, ("explicit", "semi_implicit", "semi_implicit+reach2", RC, RC + "+specific")))):
+    # variant "stress[+reachR][+cflP][+specific]": time.solid_stress, time.solid_implicit_reach
+    # = R, time.solid_implicit_cfl = P, solids.stress_blend = "specific" (docs/implicit.md)
     for mu_s, variants in cases:
         for variant in variants:
             sets = ["time.end=0.5", "output.interval=0", "solid[0].mu_s=%g" % mu_s]
-            stress, _, reach = variant.partition("+reach")
-            if variant != "explicit":
+            stress, *opts = variant.split("+")
+            if stress != "explicit":
                 sets += ["time.viscous=implicit", "time.solid_stress=" + stress]
-            if reach:
-                sets += ["time.solid_implicit_reach=" + reach]
+            for o in opts:
+                sets += ["time.solid_implicit_reach=" + o[5:] if o.startswith("reach") else
+                         "time.solid_implicit_cfl=" + o[3:] if o.startswith("cfl") else
+                         "solids.stress_blend=" + o]
             info = run(args, "scenes/bounce_stiff.toml", "bounce_%g_%s" % (mu_s, variant), sets)
             dg = info.get("diag", [])
             a0 = float(dg[0]["solid0_area"]) if dg else float("nan")
             area_dev = max(abs(float(r["solid0_area"]) / a0 - 1) for r in dg) if dg else float("nan")
             gap = min(float(r["solid0_gap_wall"]) for r in dg) if dg else float("nan")
+            # kinetic + elastic energy: at most what the fall released (the impact's) if stable
+            ke_el = max((float(r["kinetic_energy"]) + float(r["elastic_energy"]) for r in dg), default=float("nan"))
             out_row(w, "bounce_stiff_mu%g" % mu_s, variant, info, area_dev_max=area_dev, min_gap_wall=gap,
-                    restitution=first_restitution(info["dir"]))
+                    restitution=first_restitution(info["dir"]), max_ke_elastic=ke_el)
 
 
 def disc_tgv(args, w, variants=(("explicit", []), ("semi_implicit", SEMI))):

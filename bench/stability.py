@@ -364,23 +364,27 @@ def jobs_c(quick):
     """Density ratio rho_s / rho_f (rho_f = 1) at a fixed shear-wave speed (mu_s / rho_s = 0.5,
     the scene's), so that only the density jump across the interface changes: 48 x 48, to
     t = 1, without gravity (the energy bound holds) and with g = 1 downwards (the disc sinks
-    or rises; area drift only), for multigrid and CG pressure solves."""
+    or rises; area drift only), for multigrid and CG pressure solves, and the multigrid with
+    the specific stress blend (solids.stress_blend = "specific", docs/density_ratio.md)."""
     ratios = [1e-3, 1e-2, 1e-1, 1, 1e1, 1e2, 1e3] if quick else \
         [1e-3, 1e-2, 3e-2, 1e-1, 0.3, 1, 3, 1e1, 3e1, 1e2, 1e3]
-    solvers = ["multigrid"] if quick else ["multigrid", "cg"]
+    solvers = ["multigrid"] if quick else ["multigrid", "cg", "multigrid+specific"]
     out = []
-    for solver in solvers:
+    for variant in solvers:
+        solver, _, blend = variant.partition("+")
         for grav in (False, True):
-            name = f"{solver}{', g = 1' if grav else ''}"
+            name = f"{solver}{', specific stress blend' if blend else ''}{', g = 1' if grav else ''}"
             for r in ratios:
                 sets = [f'solver.poisson="{solver}"', "grid.nx=48", "grid.ny=48", "time.end=1.0",
                         "output.vtk=false", f"solid.0.density={r:g}", f"solid.0.mu_s={0.5 * r:g}"]
+                if blend:
+                    sets.append(f'solids.stress_blend="{blend}"')
                 if grav:
                     sets.append("gravity.g=[0.0, -1.0]")
                 out.append(dict(sweep="c", method=name, stress_discretisation="cell", conservative=True,
                                 xi_advection="vanleer", extrapolation="lsq", lsq_radius=2.83,
                                 param="rho_s/rho_f", value=r, gravity=grav, rho_s=r, mu_s=0.5 * r, nx=48,
-                                tag=f"c/{solver}_g{int(grav)}_r{r:g}", sets=sets))
+                                tag=f"c/{solver}{'_' + blend if blend else ''}_g{int(grav)}_r{r:g}", sets=sets))
     return out
 
 

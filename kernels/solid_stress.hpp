@@ -33,12 +33,15 @@ template <ConstitutiveModel M>
 void cell_stress(const M& model, CView xi_x, CView xi_y, CView phi, int ni, int nj, double dx,
                  double phi_max, View sxx, View sxy, View syy);
 
-/// Conservative blending, eq. (3.6): S(i0+i, j0+j) += (1 - H(phi)) sigma_s(i, j) on the
-/// window, H of half-width w_t. Returns the elastic energy sum (1 - H) W(b) dx^2, b read
-/// back from the stored stress (model.strain), W the model's (isochoric) energy density.
+/// Conservative blending, eq. (3.6): S(i0+i, j0+j) += w sigma_s(i, j) on the window, with
+/// w = 1 - H(phi) (H of half-width w_t), or, for light_ratio = rho_f / rho_s < 1
+/// (solids.stress_blend = "specific"), w = (1 - H) rho_b / rho_s = (1 - H)(1 - H + H
+/// light_ratio). Returns the elastic energy sum w W(b) dx^2, b read back from the stored
+/// stress (model.strain), W the model's (isochoric) energy density.
 template <ConstitutiveModel M>
 double blend_stress(const M& model, CView sxx, CView sxy, CView syy, CView phi, int ni, int nj,
-                    double dx, double w_t, View gxx, View gxy, View gyy, int i0, int j0);
+                    double dx, double w_t, View gxx, View gxy, View gyy, int i0, int j0,
+                    double light_ratio = 1.0);
 
 /// Largest tangent shear modulus model.wave_modulus(b) over the cells with phi < phi_max
 /// (b read back from the stored stress), at least its value at rest: the time-step bound.
@@ -137,13 +140,16 @@ void cell_stress(const M& model, CView xi_x, CView xi_y, CView phi, int ni, int 
 
 template <ConstitutiveModel M>
 double blend_stress(const M& model, CView sxx, CView sxy, CView syy, CView phi, int ni, int nj,
-                    double dx, double w_t, View gxx, View gxy, View gyy, int i0, int j0) {
+                    double dx, double w_t, View gxx, View gxy, View gyy, int i0, int j0,
+                    double light_ratio) {
+  const bool specific = light_ratio < 1.0;
   const double e = parallel_rows_sum(0, nj, ni, [&](int j) {
     double en = 0.0;
     for (int i = 0; i < ni; ++i) {
       const double ph = phi(i, j);
       if (ph >= w_t) continue;
-      const double s = 1.0 - smoothed_heaviside(ph, w_t);
+      double s = 1.0 - smoothed_heaviside(ph, w_t);
+      if (specific) s *= s + (1.0 - s) * light_ratio;  // rho_b / rho_s
       gxx(i0 + i, j0 + j) += s * sxx(i, j);
       gxy(i0 + i, j0 + j) += s * sxy(i, j);
       gyy(i0 + i, j0 + j) += s * syy(i, j);

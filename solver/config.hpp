@@ -40,6 +40,12 @@ enum class BodyForcing { Diffuse, Interpolated };
 enum class ExtrapolationMethod { Lsq, Pde };
 /// SolidsOptions::stress_form: discretisation of the solid stress divergence.
 enum class StressForm { Cell, Face };
+/// SolidsOptions::stress_blend: the weight of a solid's stress in the mixture (eq. 3.6):
+/// Volume, the paper's 1 - H; Specific, (1 - H) rho_b / rho_s for a solid heavier than the
+/// fluid (rho_b = (1 - H) rho_s + H rho_f): the stress per unit mass blended by volume
+/// fraction, so the light cells of the blend are not driven harder than the solid
+/// (docs/density_ratio.md). The same as Volume when rho_s <= rho_f.
+enum class StressBlend { Volume, Specific };
 /// Config::viscous_time: the viscous stress forward Euler (eq. 5.2) or backward Euler in
 /// its compact part (solver/implicit_step.hpp, docs/implicit.md).
 enum class ViscousTime { Explicit, Implicit };
@@ -152,6 +158,7 @@ struct SolidsOptions {
   /// the 2 dx-wide cell form leaves undamped in an inviscid solid, but was seen to gain
   /// energy in the disc-in-Taylor-Green case; see kernels/solid_stress.hpp)
   StressForm stress_form = StressForm::Cell;
+  StressBlend stress_blend = StressBlend::Volume;  ///< solids.stress_blend (cell, conservative form)
   /// face values of xi in its advection (eq. 3.3): Central (the paper's), VanLeer or
   /// Superbee (limited upwind: damp grid-scale xi oscillations where the solid moves; all
   /// three exact for an affine xi; see docs/reference_map.md)
@@ -196,6 +203,9 @@ struct Config {
   /// time.solid_implicit_reach: cells by which the implicit solid coefficient's blend
   /// 1 - H(phi - reach dx) reaches further into the fluid than the stress's (docs/implicit.md)
   double solid_implicit_reach = 0.0;
+  /// time.solid_implicit_cfl: P of dt <= P dx sqrt(rho_s / G) for the implicit solid stress
+  /// (0: no solid limit; with the reach a disc in a fluid stays bounded to P ~ 8)
+  double solid_implicit_cfl = 0.0;
   int solid_rate_sweeps = 1;  ///< time.solid_rate_sweeps: outer block Gauss-Seidel sweeps of the upper-convected step (1: cross terms lagged)
   /// time.implicit_tol: relative residual of the implicit velocity solve (the velocity
   /// change d over a step; solver/implicit_step.hpp); looser than the pressure's solver.tol

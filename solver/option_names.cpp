@@ -75,6 +75,11 @@ std::span<const OptionName<StressForm>> option_names(StressForm) {
   return span_of(n);
 }
 
+std::span<const OptionName<StressBlend>> option_names(StressBlend) {
+  static const OptionName<StressBlend> n[] = {{StressBlend::Volume, "volume"}, {StressBlend::Specific, "specific"}};
+  return span_of(n);
+}
+
 std::span<const OptionName<JumpFlux>> option_names(JumpFlux) {
   static const OptionName<JumpFlux> n[] = {{JumpFlux::Superbee, "superbee"}, {JumpFlux::Same, "same"}};
   return span_of(n);

@@ -37,6 +37,7 @@ std::span<const OptionName<BodyForcing>> option_names(BodyForcing);
 std::span<const OptionName<ExtrapolationMethod>> option_names(ExtrapolationMethod);
 std::span<const OptionName<ConstitutiveLaw>> option_names(ConstitutiveLaw);
 std::span<const OptionName<StressForm>> option_names(StressForm);
+std::span<const OptionName<StressBlend>> option_names(StressBlend);
 std::span<const OptionName<ViscousTime>> option_names(ViscousTime);
 std::span<const OptionName<SolidStressTime>> option_names(SolidStressTime);
 std::span<const OptionName<JumpFlux>> option_names(JumpFlux);

@@ -781,6 +781,7 @@ void parse_time(const Ctx& ctx, const Table& top, Config& cfg) {
   cfg.solid_time = t.option<SolidStressTime>("solid_stress");
   cfg.solid_implicit_k = t.number("solid_implicit_k");
   cfg.solid_implicit_reach = t.number("solid_implicit_reach");
+  cfg.solid_implicit_cfl = t.number("solid_implicit_cfl");
   cfg.solid_rate_sweeps = t.integer("solid_rate_sweeps");
   cfg.implicit_tol = t.number("implicit_tol");
 }
@@ -919,6 +920,9 @@ void parse_solids_options(const Ctx& ctx, const Table& top, Config& cfg) {
   }
   o.conservative = s.boolean("conservative");
   o.stress_form = s.option<StressForm>("stress_discretisation");
+  o.stress_blend = s.option<StressBlend>("stress_blend");
+  s.require(o.stress_blend == StressBlend::Volume || (o.stress_form == StressForm::Cell && o.conservative),
+            "stress_blend", "\"specific\" needs stress_discretisation = \"cell\" and conservative = true");
   o.xi_advection = s.option<XiFlux>("xi_advection");
   o.solid_cfl = s.number("solid_cfl");
   o.reinitialise = s.boolean("reinitialise");

@@ -202,6 +202,10 @@ std::vector<KeyDef> build_keys() {
           "fluid than the stress: its coefficient is blended with 1 - H(phi - reach dx) instead of 1 - H(phi); at "
           "most solids.band - solids.transition. 2 keeps a disc in a fluid bounded to about 8x (semi_implicit) "
           "or 4x (upper_convected) the explicit step, at some cost in accuracy (docs/implicit.md)"),
+      num("time", "solid_implicit_cfl", d.solid_implicit_cfl, ge(0, "0 = none"),
+          "P of a solid time-step limit dt <= P dx sqrt(rho_s / G) for the implicit solid stress (semi_implicit or "
+          "upper_convected), which has none by default (0); with solid_implicit_reach = 2 a disc in a fluid stays "
+          "bounded to P ~ 8, less through an impact (docs/implicit.md)"),
       integer("time", "solid_rate_sweeps", d.solid_rate_sweeps, in(1, false, 100, false),
               "outer block Gauss-Seidel sweeps (u, then v) of solid_stress = \"upper_convected\": the first "
               "without its cross terms (b_xy and the other component's derivatives: lagged), each further "
@@ -292,6 +296,11 @@ std::vector<KeyDef> build_keys() {
       choice<StressForm>("solids", "stress_discretisation", dso.stress_form,
                          "solid stress divergence: `\"cell\"`, the paper's cell-centred stress (eqs. 2.9, 3.1), "
                          "or `\"face\"`, a compact face-based form"),
+      choice<StressBlend>("solids", "stress_blend", dso.stress_blend,
+                          "weight of a solid's stress in the mixture: `\"volume\"`, the paper's 1 - H (eq. 3.6), or "
+                          "`\"specific\"`, (1 - H) rho_b / rho_s for a solid heavier than the fluid (the stress per unit "
+                          "mass blended by volume; removes most of a heavy solid's energy gain, docs/density_ratio.md); "
+                          "cell stress in the conservative form only"),
       choice<XiFlux>("solids", "xi_advection", dso.xi_advection,
                      "face values of ξ in its advection (eq. 3.3): second-order central (the paper's) or "
                      "Superbee / van Leer limited upwind"),

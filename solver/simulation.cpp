@@ -38,7 +38,7 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
   for (Field* f : {&k2x_, &k2y_}) f->resize(nx, ny, ng);
   bool elastic = false;
   for (const SolidSpec& sp : cfg_.solids) {
-    solids_.push_back(std::make_unique<Solid>(sp, cfg_.solid_opt, cfg_.grid, face_boundary(cfg_)));
+    solids_.push_back(std::make_unique<Solid>(sp, cfg_.solid_opt, cfg_.grid, face_boundary(cfg_), cfg_.rho_f));
     elastic = elastic || sp.mu_s > 0.0;
   }
   if (elastic)
@@ -352,6 +352,8 @@ double Simulation::stable_dt() const {
     dt = std::min(dt, cfg_.visc_safety * g.dx * g.dx / (6.0 * nu_max));
   if (cfg_.solid_time == SolidStressTime::Explicit)
     for (const auto& s : solids_) dt = std::min(dt, s->min_dt());
+  else if (cfg_.solid_implicit_cfl > 0.0)  // the implicit stress's own cap (docs/implicit.md)
+    for (const auto& s : solids_) dt = std::min(dt, s->min_dt(cfg_.solid_implicit_cfl));
   if (contact_ && contact_->force_enabled()) {
     // the force acts in the layer -2 dx < phi < 0 of a solid, where the blended density is
     // at least the mean of the solid's and the fluid's

@@ -19,8 +19,10 @@ constexpr int kMarginMin = 3;  // cells between the band and the window edge bef
 constexpr int kMarginNew = 8;  // margin given to a new window (hysteresis)
 }  // namespace
 
-Solid::Solid(const SolidSpec& spec, const SolidsOptions& opt, const Grid& g, Sides sides)
+Solid::Solid(const SolidSpec& spec, const SolidsOptions& opt, const Grid& g, Sides sides, double rho_f)
     : spec_(spec), opt_(opt), grid_(g), sides_(sides) {
+  // rho_f / rho_s of the specific stress blend (1: the volume blend, bit for bit)
+  if (opt_.stress_blend == StressBlend::Specific && spec_.density > rho_f) light_ratio_ = rho_f / spec_.density;
   shape_ = make_shape(spec_.shape);
   band_ = opt_.band * g.dx;
   wt_ = opt_.transition * g.dx;
@@ -258,7 +260,7 @@ double Solid::blend_model_stress(const Model& model, Field& sxx, Field& sxy, Fie
   // (blend_stress reads the window's interior only: the ghosts zeroed above do not matter)
   const double energy = blend_stress(model, sxx_.view(), sxy_.view(), syy_.view(), phi_.view(),
                                      ni_, nj_, grid_.dx, wt_, sxx.view(), sxy.view(), syy.view(),
-                                     i0_, j0_);
+                                     i0_, j0_, light_ratio_);
   if (opt_.stress_form == StressForm::Face) {
     add_face_stress_force(model, xi_x_.view(), xi_y_.view(), phi_.view(), ni_, nj_, grid_.dx,
                           wt_, opt_.conservative, fx.view(), fy.view(), i0_, j0_);
@@ -345,7 +347,7 @@ double Solid::wave_modulus() const {
   return std::max(rest, max_wave_modulus_);
 }
 
-double Solid::min_dt() const {
+double Solid::min_dt(double p) const {
   if (spec_.mu_s <= 0.0) return 1e300;
   // section 4: dt <= P dx sqrt(rho_s / G), shear-wave speed sqrt(G / rho_s), G = 2 mu_s.
   // At finite strain the wave speed is sqrt(G_t / rho_s) with the model's tangent shear
@@ -354,7 +356,7 @@ double Solid::min_dt() const {
   const double rest = with_constitutive_model(spec_, [](const auto& m) {
     return m.wave_modulus({1.0, 0.0, 1.0});
   });
-  return opt_.solid_cfl * grid_.dx / std::sqrt(std::max(rest, max_wave_modulus_) / spec_.density);
+  return p * grid_.dx / std::sqrt(std::max(rest, max_wave_modulus_) / spec_.density);
 }
 
 std::size_t Solid::storage_bytes() const {

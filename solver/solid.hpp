@@ -44,7 +44,8 @@ class Solid {
  public:
   /// sides: which directions are periodic (a solid may only cross a periodic boundary by
   /// spanning that direction).
-  Solid(const SolidSpec& spec, const SolidsOptions& opt, const Grid& g, Sides sides);
+  /// rho_f: the fluid's density (solids.stress_blend = "specific" weighs the stress by it).
+  Solid(const SolidSpec& spec, const SolidsOptions& opt, const Grid& g, Sides sides, double rho_f = 1.0);
 
   const SolidSpec& spec() const { return spec_; }
   const Shape& shape() const { return *shape_; }
@@ -105,7 +106,8 @@ class Solid {
   void impose_initial_velocity(Field& u, Field& v) const;
 
   SolidDiagnostics diagnostics(const Field& u, const Field& v) const;
-  double min_dt() const;  ///< shear-wave limit of section 4
+  double min_dt() const { return min_dt(opt_.solid_cfl); }  ///< shear-wave limit of section 4
+  double min_dt(double p) const;  ///< the same with the factor P = p
   /// The shear modulus min_dt() uses: the model's at rest (G = 2 mu_s for neo-Hookean) or
   /// the largest tangent modulus at the last stress evaluation, whichever is larger.
   double wave_modulus() const;
@@ -165,6 +167,7 @@ class Solid {
   bool wrap_x_ = false, wrap_y_ = false;  ///< window spans a periodic direction
   std::unique_ptr<Shape> shape_;
   double band_, wt_;
+  double light_ratio_ = 1.0;  ///< rho_f / rho_s of solids.stress_blend = "specific" (1: volume blend)
   int i0_ = 0, j0_ = 0, ni_ = 0, nj_ = 0;
   Field xi_x_, xi_y_, phi_, kx_, ky_, k2x_, k2y_, xs_, ys_, x0x_, x0y_;
   Field sxx_, sxy_, syy_;

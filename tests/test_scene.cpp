@@ -710,6 +710,8 @@ TEST_F(SceneFiles, SceneSolidErrorsMore) {
   EXPECT_HAS(error_of(base + "[solids]\nband = 1\n"), "solids.band: must be > 1");
   EXPECT_HAS(error_of(base + "[solids]\nband = 3.5\n"), "solids.band: must be > solids.transition + 1 = 4");
   EXPECT_HAS(error_of(base + "[solids]\nband = 5\ntransition = 4\n"), "solids.transition: must be < solids.band - 1 = 4");
+  EXPECT_HAS(error_of(base + "[solids]\nstress_blend = \"specific\"\nstress_discretisation = \"face\"\n"),
+             "solids.stress_blend: \"specific\" needs stress_discretisation = \"cell\" and conservative = true");
   EXPECT_HAS(error_of(base + "[solids]\nband = 5\ntransition = 3\n", {"time.solid_implicit_reach=2.5"}),
              "time.solid_implicit_reach: must be <= solids.band - solids.transition = 2 cells");
   EXPECT_HAS(error_of(base + "[solids]\ntransition = 0\n"), "solids.transition: must be > 0");

@@ -350,6 +350,36 @@ TEST(StabilityLimits, DensityJumpFluxKeepsHeavyDiscBounded) {
   EXPECT_GT(central.energy_rise, 1e3);
 }
 
+// The specific stress blend (solids.stress_blend = "specific": the stress weighted by
+// (1 - H) rho_b / rho_s, docs/density_ratio.md) against the gain above. Measured (48^2,
+// t = 1): energy rise at ratio 30 +17.8 % (volume) -> +0.2 %, at 100 +34 % -> +3.4 %; ratio
+// 1000 completes (+43 %; volume: folds at t = 0.74); with g = 1 ratio 100 completes with
+// 0.69 % area drift (volume: blows up); at ratio 1 it is the volume blend, bit for bit.
+TEST(StabilityLimits, SpecificStressBlendRemovesMostOfTheHeavyDiscsGain) {
+  auto specific = [](std::vector<std::string> sets) {
+    sets.push_back("solids.stress_blend=\"specific\"");
+    return sets;
+  };
+  const Outcome vol30 = run_disc_tgv("rho_30_volume", density_case(30.0));
+  const Outcome spec30 = run_disc_tgv("rho_30_specific", specific(density_case(30.0)));
+  EXPECT_GT(vol30.energy_rise, 0.1);
+  ASSERT_FALSE(spec30.failed) << spec30.failure;
+  EXPECT_LE(spec30.energy_rise, 0.01);
+  EXPECT_LE(spec30.area_drift, 0.01);
+  const Outcome spec1000 = run_disc_tgv("rho_1000_specific", specific(density_case(1000.0)));
+  EXPECT_FALSE(spec1000.failed) << spec1000.failure;
+  EXPECT_LT(spec1000.energy_rise, 0.6);
+  auto g100 = specific(density_case(100.0));
+  g100.push_back("gravity.g=[0.0, -1.0]");
+  const Outcome spec_g100 = run_disc_tgv("rho_100_g_specific", g100);
+  EXPECT_FALSE(spec_g100.failed) << spec_g100.failure;
+  EXPECT_LE(spec_g100.area_drift, 0.01);
+  const Outcome vol1 = run_disc_tgv("rho_1_volume", density_case(1.0));
+  const Outcome spec1 = run_disc_tgv("rho_1_specific", specific(density_case(1.0)));
+  EXPECT_EQ(vol1.e_end, spec1.e_end);
+  EXPECT_EQ(vol1.area_drift, spec1.area_drift);
+}
+
 // sweep d: contact, scenes/wall_microgravity.toml (48^2, to t = 0.5) with the contact
 // strength held at the scene's (velocity_scale 1.5): the disc stays off the wall (gap > 0)
 // up to the impact speed V = 2 and overlaps it from V = 3 (gap -0.37 dx; V = 4: -1.25 dx)
@@ -408,4 +438,21 @@ TEST(StabilityLimits, SolidPairBelowLimitKeepsAGap) {
 TEST(StabilityLimits, SolidPairFarPastLimitFails) {
   const Outcome o = run_disc_tgv("pair_8", pair_case(8.0), "wall_microgravity.toml");
   EXPECT_TRUE(o.failed || o.min_gap < 0.0 || o.area_drift > 0.01) << o.area_drift;
+}
+
+// time.solid_implicit_cfl: the implicit solid stress's own cap P on dt <= P dx sqrt(rho_s /
+// G) (none by default). With the reach the disc in disc_tgv stays bounded to P ~ 8
+// (results/README.md, "The reach"); the cap at 8 makes that a rule: at mu_s = 1e5 the
+// first step is the capped one, 5.6e-4, not the vortex's advective 0.050 (89x larger).
+TEST(StabilityLimits, ImplicitSolidCflCapsTheStep) {
+  const double mu = 1e5, dx = 1.0 / 32;
+  std::vector<std::string> sets = semi_implicit_case(mu, 1e3);  // dt_max far above
+  sets.push_back("time.solid_implicit_reach=2");
+  sets.push_back("time.solid_implicit_cfl=8");
+  sets.push_back("time.max_steps=1");
+  sets.push_back("output.vtk=false");
+  Config cfg = load_scene(scene_path("disc_tgv.toml"), sets);
+  Simulation sim(cfg);
+  const double dt = sim.step();
+  EXPECT_DOUBLE_EQ(dt, 8.0 * dx / std::sqrt(2.0 * mu / 1.0));
 }
