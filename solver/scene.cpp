@@ -782,6 +782,12 @@ void parse_time(const Ctx& ctx, const Table& top, Config& cfg) {
   cfg.solid_implicit_k = t.number("solid_implicit_k");
   cfg.solid_implicit_reach = t.number("solid_implicit_reach");
   cfg.solid_implicit_cfl = t.number("solid_implicit_cfl");
+  // the two act on the implicit solid term only: with the explicit stress they would do nothing
+  const bool implicit_solid = cfg.solid_time != SolidStressTime::Explicit;
+  t.require(implicit_solid || cfg.solid_implicit_reach == 0.0, "solid_implicit_reach",
+            "needs solid_stress = \"semi_implicit\" or \"upper_convected\"");
+  t.require(implicit_solid || cfg.solid_implicit_cfl == 0.0, "solid_implicit_cfl",
+            "needs solid_stress = \"semi_implicit\" or \"upper_convected\" (the explicit stress has solids.solid_cfl)");
   cfg.solid_rate_sweeps = t.integer("solid_rate_sweeps");
   cfg.implicit_tol = t.number("implicit_tol");
 }

@@ -712,7 +712,11 @@ TEST_F(SceneFiles, SceneSolidErrorsMore) {
   EXPECT_HAS(error_of(base + "[solids]\nband = 5\ntransition = 4\n"), "solids.transition: must be < solids.band - 1 = 4");
   EXPECT_HAS(error_of(base + "[solids]\nstress_blend = \"specific\"\nstress_discretisation = \"face\"\n"),
              "solids.stress_blend: \"specific\" needs stress_discretisation = \"cell\" and conservative = true");
-  EXPECT_HAS(error_of(base + "[solids]\nband = 5\ntransition = 3\n", {"time.solid_implicit_reach=2.5"}),
+  EXPECT_HAS(error_of(base, {"time.solid_implicit_cfl=8"}),
+             "time.solid_implicit_cfl: needs solid_stress = \"semi_implicit\" or \"upper_convected\"");
+  EXPECT_HAS(error_of(base, {"time.solid_implicit_reach=2"}),
+             "time.solid_implicit_reach: needs solid_stress = \"semi_implicit\" or \"upper_convected\"");
+  EXPECT_HAS(error_of(base + "[solids]\nband = 5\ntransition = 3\n", {"time.solid_implicit_reach=2.5", "time.solid_stress=\"semi_implicit\""}),
              "time.solid_implicit_reach: must be <= solids.band - solids.transition = 2 cells");
   EXPECT_HAS(error_of(base + "[solids]\ntransition = 0\n"), "solids.transition: must be > 0");
   EXPECT_HAS(error_of(base + "[solids]\nsolid_cfl = 8.5\n"), "solids.solid_cfl: must be in (0, 8]");
