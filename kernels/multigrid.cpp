@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "kernels/loop.hpp"
+#include "kernels/multigrid9_rows.hpp"
 #include "kernels/stencil5.hpp"
 
 namespace refmap::mg {
@@ -61,8 +62,9 @@ inline void rb_row(const Stencil& s, View x, CView f, int j, int colour, double 
   ghost_cols(s, xr);
 }
 
-/// (L x) on row j written as f - Lx into out[0, nx).
-inline void residual_row(const Stencil& s, CView x, CView f, int j, double* __restrict out) {
+}  // namespace
+
+void residual_row(const Stencil& s, CView x, CView f, int j, double* __restrict out) {
   const double* xr = &x(0, j);
   const double* xs = &x(0, j - 1);
   const double* xn = &x(0, j + 1);
@@ -83,6 +85,8 @@ inline void residual_row(const Stencil& s, CView x, CView f, int j, double* __re
   for (int i = 0; i < nx; ++i)
     out[i] = fr[i] - stencil5_apply(t[i], t[i + 1], ts[i], tn[i], xr[i - 1], xr[i + 1], xs[i], xn[i], xr[i]);
 }
+
+namespace {
 
 /// out[I] = sum_i P(i, I) rr[i]  (x-direction restriction of one row).
 inline void restrict_row(const Transfer1D& T, const double* __restrict rr, double* __restrict out) {
@@ -419,20 +423,105 @@ struct RestrictStream {
 /// valley are then computed by the thread of that valley, recomputing the residual rows
 /// they need. Needs chunks of >= 2 * stages + 8 rows. ||f - L x||^2 is summed from one
 /// partial per row in row order (kernels/loop.hpp: same bits for any team size).
+/// The pipeline's optional first stage, x(., r) += P x_c for the cell-centred transfers
+/// (prolong_add), and its optional last stage, fc = P^T (f - L x) (residual_restrict).
 struct PipeIn {
   const Transfer1D* trx;
   const Transfer1D* try_;
   CView xc;
+  void row(const Stencil& s, View x, int r, double* tmp) const {
+    prolong_fine_row(s, *trx, *try_, xc, x, r, tmp);
+  }
+  /// where this stage's coarse row buffer sits in a thread's scratch
+  std::size_t tmp_offset(const Stencil& s) const {
+    return round8(s.nx) + RestrictStream::kRing * round8(trx->nc);
+  }
 };
 struct PipeOut {
   const Transfer1D* trx;
   const Transfer1D* try_;
   View fc;
+  using Stream = RestrictStream;
+  int ncy() const { return try_->nc; }
+  void span(int J, int& lo, int& hi) const { restrict_span(*try_, J, lo, hi); }
+  void init(Stream& rs, const Stencil& s, View x, CView f, double* scratch) const {
+    rs.init(s, x, f, *trx, *try_, fc, scratch);
+  }
 };
 
+/// The same two stages for the Galerkin levels' operator-dependent transfers
+/// (kernels/multigrid9.hpp: prolong9_add, residual_restrict5). Coarse row J restricts the
+/// fine residual rows 2J - 1 .. 2J + 1, kept in a ring of kRing rows.
+struct RestrictStream9 {
+  static constexpr int kRing = 4;
+  const Stencil* s = nullptr;
+  CView x, f;
+  const Prolong9* P = nullptr;
+  View fc;
+  double* ring = nullptr;
+  std::size_t slotW = 0;
+  int J = 0, J_end = 0;
+
+  static void span(const Prolong9& P, int J, int& lo, int& hi) {
+    lo = std::max(2 * J - 1, 0);
+    hi = std::min(2 * J + 1, P.nfy - 1);
+  }
+  double* slot(int r) const { return ring + std::size_t(r % kRing) * slotW; }
+  void begin(int first, int J_first, int J_last) {
+    J = J_first;
+    J_end = J_last;
+    int lo = 0, hi = 0;
+    while (J < J_end) {
+      span(*P, J, lo, hi);
+      if (lo >= first) break;
+      ++J;
+    }
+  }
+  /// Fine row r (= previous + 1) has its final x on rows r-1..r+1.
+  void push(int r) {
+    residual_row(*s, x, f, r, slot(r));
+    int lo = 0, hi = 0;
+    while (J < J_end) {
+      span(*P, J, lo, hi);
+      if (hi > r) break;
+      const int j = 2 * J;
+      rows9::restrict_row(*P, J, J > 0 ? slot(j - 1) : nullptr, slot(j),
+                          j + 1 < P->nfy ? slot(j + 1) : nullptr, fc);
+      ++J;
+    }
+  }
+};
+struct PipeIn9 {
+  const Prolong9* P;
+  CView xc;
+  void row(const Stencil& s, View x, int r, double*) const {
+    double* xr = &x(0, r);
+    rows9::prolong_row(*P, xc, xr, r);
+    ghost_cols(s, xr);
+  }
+  std::size_t tmp_offset(const Stencil&) const { return 0; }
+};
+struct PipeOut9 {
+  const Prolong9* P;
+  View fc;
+  using Stream = RestrictStream9;
+  int ncy() const { return P->ncy; }
+  void span(int J, int& lo, int& hi) const { RestrictStream9::span(*P, J, lo, hi); }
+  void init(Stream& rs, const Stencil& st, View xv, CView fv, double* scratch) const {
+    rs.s = &st;
+    rs.x = xv;
+    rs.f = fv;
+    rs.P = P;
+    rs.fc = fc;
+    rs.ring = scratch;
+    rs.slotW = round8(st.nx);
+  }
+};
+
+template <class In = PipeIn, class Out = PipeOut>
 void rbgs_pipeline_walls(const Stencil& s, View x, CView f, int sweeps, int c1, double omega,
-                         double* res2, const PipeIn* pin = nullptr,
-                         const PipeOut* pout = nullptr, const Scratch* sc = nullptr) {
+                         double* res2, const In* pin = nullptr, const Out* pout = nullptr,
+                         const Scratch* sc = nullptr) {
   const int S = 2 * sweeps, ny = s.ny;
   const int k0 = pin ? 1 : 0;                // first sweep stage
   const int kres = k0 + S;                   // residual stage (if any)
@@ -448,17 +537,17 @@ void rbgs_pipeline_walls(const Stencil& s, View x, CView f, int sweeps, int c1, 
     const bool first = tm.first(), last = tm.last();
     const int jend = last ? j1 + stages - 1 : j1;
     double* tmp = nullptr;
-    RestrictStream rs;
+    typename Out::Stream rs;
     int ncy = 0;
-    if (pin) tmp = sc->thread(t) + round8(s.nx) + RestrictStream::kRing * round8(pin->trx->nc);
+    if (pin) tmp = sc->thread(t) + pin->tmp_offset(s);
     if (pout) {
-      rs.init(s, x, f, *pout->trx, *pout->try_, pout->fc, sc->thread(t));
-      ncy = pout->try_->nc;
+      pout->init(rs, s, x, f, sc->thread(t));
+      ncy = pout->ncy();
       rs.begin(first ? 0 : j0 + kres, 0, ncy);
     }
     auto stage = [&](int k, int r) {
       if (k < k0)
-        prolong_fine_row(s, *pin->trx, *pin->try_, pin->xc, x, r, tmp);
+        pin->row(s, x, r, tmp);
       else if (k < kres)
         rb_row(s, x, f, r, (c1 + k - k0) & 1, omega);
       else {
@@ -486,13 +575,13 @@ void rbgs_pipeline_walls(const Stencil& s, View x, CView f, int sweeps, int c1, 
           const int gap_lo = j1 - kres, gap_hi = j1 + kres;
           int Ja = 0, lo = 0, hi = -1;
           while (Ja < ncy) {
-            restrict_span(*pout->try_, Ja, lo, hi);
+            pout->span(Ja, lo, hi);
             if (hi >= gap_lo) break;
             ++Ja;
           }
           int Jb = Ja, rfirst = lo, rlast = lo - 1;
           while (Jb < ncy) {
-            restrict_span(*pout->try_, Jb, lo, hi);
+            pout->span(Jb, lo, hi);
             if (lo >= gap_hi) break;
             rfirst = std::min(rfirst, lo);
             rlast = std::max(rlast, hi);
@@ -550,7 +639,7 @@ void smooth_rbgs_restrict(const Stencil& s, View x, CView f, int sweeps, bool bl
                           const Scratch& sc) {
   if (sweeps > 0 && !s.sides.periodic_y()) {
     const PipeOut po{&trx, &try_, fc};
-    rbgs_pipeline_walls(s, x, f, sweeps, black_first ? 1 : 0, omega, nullptr, nullptr, &po, &sc);
+    rbgs_pipeline_walls<PipeIn, PipeOut>(s, x, f, sweeps, black_first ? 1 : 0, omega, nullptr, nullptr, &po, &sc);
     return;
   }
   smooth_rbgs(s, x, f, sweeps, black_first, omega);
@@ -562,10 +651,36 @@ void prolong_smooth_rbgs(const Stencil& s, const Transfer1D& trx, const Transfer
                          const Scratch& sc, double* res2) {
   if (sweeps > 0 && !s.sides.periodic_y()) {
     const PipeIn pi{&trx, &try_, xc};
-    rbgs_pipeline_walls(s, x, f, sweeps, black_first ? 1 : 0, omega, res2, &pi, nullptr, &sc);
+    rbgs_pipeline_walls<PipeIn, PipeOut>(s, x, f, sweeps, black_first ? 1 : 0, omega, res2, &pi, nullptr, &sc);
     return;
   }
   prolong_add(s, trx, try_, xc, x, sc);
+  smooth_rbgs(s, x, f, sweeps, black_first, omega, res2);
+}
+
+void smooth_rbgs_restrict9(const Stencil& s, View x, CView f, int sweeps, bool black_first,
+                           double omega, const Prolong9& P, View fc, const Scratch& sc) {
+  if (sweeps > 0 && !s.sides.periodic_y()) {
+    const PipeOut9 po{&P, fc};
+    rbgs_pipeline_walls<PipeIn, PipeOut9>(s, x, f, sweeps, black_first ? 1 : 0, omega, nullptr,
+                                          nullptr, &po, &sc);
+    return;
+  }
+  smooth_rbgs(s, x, f, sweeps, black_first, omega);
+  residual_restrict5(s, x, f, P, fc, sc);
+}
+
+void prolong9_smooth_rbgs(const Stencil& s, const Prolong9& P, CView xc, View x, CView f,
+                          int sweeps, bool black_first, double omega, const Scratch& sc,
+                          double* res2) {
+  if (sweeps > 0 && !s.sides.periodic_y()) {
+    const PipeIn9 pi{&P, xc};
+    rbgs_pipeline_walls<PipeIn9, PipeOut>(s, x, f, sweeps, black_first ? 1 : 0, omega, res2, &pi,
+                                          nullptr, &sc);
+    return;
+  }
+  prolong9_add(P, xc, x, s.threads);
+  fill_ghosts(s, x);
   smooth_rbgs(s, x, f, sweeps, black_first, omega, res2);
 }
 

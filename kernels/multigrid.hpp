@@ -123,6 +123,10 @@ void prolong_smooth_rbgs(const Stencil& s, const Transfer1D& trx, const Transfer
 void smooth_jacobi(const Stencil& s, View x, CView f, int sweeps, double omega,
                    const Scratch& sc);
 
+/// Row j of f - L x into out[0, nx) (x ghosts consistent): the one residual of a row that
+/// every kernel computing a residual uses.
+void residual_row(const Stencil& s, CView x, CView f, int j, double* out);
+
 /// r = f - L x (r may be a null view: only the norm), returns sum r^2.
 double residual(const Stencil& s, CView x, CView f, View r);
 

@@ -2,11 +2,15 @@
 #include "kernels/multigrid9.hpp"
 
 #include "kernels/loop.hpp"
+#include "kernels/multigrid9_rows.hpp"
 
 #include <algorithm>
 #include <utility>
 
 namespace refmap::mg {
+
+using rows9::coarse_step;
+using rows9::restrict_row;
 
 namespace {
 
@@ -73,14 +77,6 @@ inline double pweight(const Prolong9& P, int i, int j, int a, int b) {
   if (oi && !oj) return b ? 0.0 : P.w(a ? 1 : 0, I, J);
   if (!oi && oj) return a ? 0.0 : P.w(b ? 3 : 2, I, J);
   return P.w(4 + a + 2 * b, I, J);
-}
-
-/// Coarse index I + a (a in {0, 1}) in a direction of nc points: wrapped when periodic,
-/// -1 past a wall.
-inline int coarse_step(int I, int a, int nc, bool periodic) {
-  const int K = I + a;
-  if (K < nc) return K;
-  return periodic ? K - nc : -1;
 }
 
 template <class Op>
@@ -375,48 +371,6 @@ double residual9(const Stencil9& s, CView x, CView f, View r) {
 }
 
 namespace {
-/// Coarse row J of P^T r from the fine rows 2J - 1 (dn), 2J (mid), 2J + 1 (up); a null
-/// pointer for a row beyond a wall. fc(I, J) = sum over the fine points whose
-/// interpolation uses (I, J): (2I, 2J) injected, (2I +- 1, 2J) and (2I, 2J +- 1) edge
-/// weights, (2I +- 1, 2J +- 1) middle weights (blocks I - 1 and J - 1 for the points
-/// left of 2I and below 2J).
-inline void restrict_row(const Prolong9& P, int J, const double* dn, const double* mid,
-                         const double* up, View fc) {
-  const int ncx = P.ncx, ncy = P.ncy, nfx = P.nfx;
-  const int Jd = J > 0 ? J - 1 : ncy - 1;  // block below (periodic wrap)
-  for (int I = 0; I < ncx; ++I) {
-    const int i = 2 * I;
-    const bool has_rt = i + 1 < nfx;
-    const bool has_lt = I > 0 || P.px;
-    const int Il = I > 0 ? I - 1 : ncx - 1;
-    const int il = i > 0 ? i - 1 : nfx - 1;
-    double v = mid[i];
-    if (has_rt) v += P.w(0, I, J) * mid[i + 1];
-    if (has_lt) v += P.w(1, Il, J) * mid[il];
-    if (up) {
-      v += P.w(2, I, J) * up[i];
-      if (has_rt) v += P.w(4, I, J) * up[i + 1];
-      if (has_lt) v += P.w(5, Il, J) * up[il];
-    }
-    if (dn) {
-      v += P.w(3, I, Jd) * dn[i];
-      if (has_rt) v += P.w(6, I, Jd) * dn[i + 1];
-      if (has_lt) v += P.w(7, Il, Jd) * dn[il];
-    }
-    fc(I, J) = v;
-  }
-}
-
-/// Row j of the 5-point residual f - L x into out (x ghosts consistent).
-inline void residual_row5(const Stencil& s, CView x, CView f, int j, double* out) {
-  for (int i = 0; i < s.nx; ++i) {
-    const double xc = x(i, j);
-    double lx = s.tx(i, j) * (x(i - 1, j) - xc) + s.tx(i + 1, j) * (x(i + 1, j) - xc) +
-                s.ty(i, j) * (x(i, j - 1) - xc) + s.ty(i, j + 1) * (x(i, j + 1) - xc);
-    if (s.c.p) lx -= s.c(i, j) * xc;
-    out[i] = f(i, j) - lx;
-  }
-}
 }  // namespace
 
 void restrict9(const Prolong9& P, CView r, View fc, int threads) {
@@ -429,28 +383,33 @@ void restrict9(const Prolong9& P, CView r, View fc, int threads) {
   });
 }
 
+std::size_t scratch9_per_thread(int nxf) {
+  // the fused passes' ring of 4 fine rows (multigrid.cpp); residual_restrict5 uses 3
+  return 4 * ((std::size_t(nxf) + 7) / 8 * 8);
+}
+
 void residual_restrict5(const Stencil& s, CView x, CView f, const Prolong9& P, View fc,
-                        double* buf, int threads) {
-  const int ncy = P.ncy, nfy = P.nfy, nx = s.nx;
-  const int nt = std::max(1, std::min(threads, ncy));
+                        const Scratch& sc) {
+  const int ncy = P.ncy, nfy = P.nfy;
+  const int nt = std::max(1, std::min({s.threads, sc.nthreads, ncy}));
+  const std::size_t W = (std::size_t(s.nx) + 7) / 8 * 8;
   // one chunk of coarse rows per thread; its first fine row below is computed twice
   parallel_rows_on(nt, 0, nt, [&](int t) {
     const int J0 = int(long(ncy) * t / nt), J1 = int(long(ncy) * (t + 1) / nt);
-    double* rows[3] = {buf + std::size_t(3 * t) * nx, buf + std::size_t(3 * t + 1) * nx,
-                       buf + std::size_t(3 * t + 2) * nx};
+    double* rows[3] = {sc.thread(t), sc.thread(t) + W, sc.thread(t) + 2 * W};
     double* dn = rows[0];
     double* mid = rows[1];
     double* up = rows[2];
     bool have_dn = false;
     if (J0 > 0 || P.py) {
-      residual_row5(s, x, f, J0 > 0 ? 2 * J0 - 1 : nfy - 1, dn);
+      residual_row(s, x, f, J0 > 0 ? 2 * J0 - 1 : nfy - 1, dn);
       have_dn = true;
     }
     for (int J = J0; J < J1; ++J) {
       const int j = 2 * J;
-      residual_row5(s, x, f, j, mid);
+      residual_row(s, x, f, j, mid);
       const bool have_up = j + 1 < nfy;
-      if (have_up) residual_row5(s, x, f, j + 1, up);
+      if (have_up) residual_row(s, x, f, j + 1, up);
       restrict_row(P, J, have_dn ? dn : nullptr, mid, have_up ? up : nullptr, fc);
       std::swap(dn, up);  // row 2J + 1 is the next coarse row's row below
       have_dn = have_up;
@@ -459,29 +418,7 @@ void residual_restrict5(const Stencil& s, CView x, CView f, const Prolong9& P, V
 }
 
 void prolong9_add(const Prolong9& P, CView xc, View xf, int threads) {
-  const int ncx = P.ncx, ncy = P.ncy, nfx = P.nfx;
-  parallel_rows_on(threads, 0, P.nfy, [&](int j) {
-    const int J = j >> 1;
-    int J1 = coarse_step(J, 1, ncy, P.py);
-    if (J1 < 0) J1 = J;  // past a wall: the weights towards it are 0
-    auto I1 = [&](int I) { return I + 1 < ncx ? I + 1 : (P.px ? 0 : I); };
-    if (!(j & 1)) {
-      for (int I = 0; I < ncx; ++I) {
-        const double c0 = xc(I, J);
-        xf(2 * I, j) += c0;
-        if (2 * I + 1 < nfx) xf(2 * I + 1, j) += P.w(0, I, J) * c0 + P.w(1, I, J) * xc(I1(I), J);
-      }
-    } else {
-      for (int I = 0; I < ncx; ++I) {
-        const int Ir = I1(I);
-        const double c00 = xc(I, J), c01 = xc(I, J1);
-        xf(2 * I, j) += P.w(2, I, J) * c00 + P.w(3, I, J) * c01;
-        if (2 * I + 1 < nfx)
-          xf(2 * I + 1, j) += P.w(4, I, J) * c00 + P.w(5, I, J) * xc(Ir, J) + P.w(6, I, J) * c01 +
-                              P.w(7, I, J) * xc(Ir, J1);
-      }
-    }
-  });
+  parallel_rows_on(threads, 0, P.nfy, [&](int j) { rows9::prolong_row(P, xc, &xf(0, j), j); });
 }
 
 }  // namespace refmap::mg

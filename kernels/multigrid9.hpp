@@ -93,11 +93,27 @@ double residual9(const Stencil9& s, CView x, CView f, View r);
 /// fc = P^T r (r on the fine level, any stencil).
 void restrict9(const Prolong9& P, CView r, View fc, int threads);
 
+/// Per-thread scratch (doubles) of residual_restrict5 and of the two fused passes below
+/// for a finest level of nxf cells a row.
+std::size_t scratch9_per_thread(int nxf);
+
 /// fc = P^T (f - L x) for the finest 5-point operator s, fused: the fine residual is
-/// computed row by row into buf (3 * s.nx doubles per thread, `threads` of them) and
-/// restricted at once, never stored whole. x ghosts consistent.
+/// computed row by row into the threads' scratch and restricted at once, never stored
+/// whole. x ghosts consistent. Team size min(s.threads, sc.nthreads).
 void residual_restrict5(const Stencil& s, CView x, CView f, const Prolong9& P, View fc,
-                        double* buf, int threads);
+                        const Scratch& sc);
+
+/// The finest level's passes of a Galerkin V-cycle, fused as smooth_rbgs_restrict and
+/// prolong_smooth_rbgs fuse the default ones (kernels/multigrid.hpp; implemented in
+/// multigrid.cpp beside them): smooth_rbgs followed by residual_restrict5, and
+/// prolong9_add (with the ghosts refreshed) followed by smooth_rbgs, each in one pass over
+/// memory when the walls are in y, with the same result bit for bit. Periodic y: the
+/// separate kernels.
+void smooth_rbgs_restrict9(const Stencil& s, View x, CView f, int sweeps, bool black_first,
+                           double omega, const Prolong9& P, View fc, const Scratch& sc);
+void prolong9_smooth_rbgs(const Stencil& s, const Prolong9& P, CView xc, View x, CView f,
+                          int sweeps, bool black_first, double omega, const Scratch& sc,
+                          double* res2 = nullptr);
 
 /// xf += P xc (interior of xf only; the caller refreshes ghosts where needed).
 void prolong9_add(const Prolong9& P, CView xc, View xf, int threads);

@@ -93,7 +93,7 @@ void GalerkinLevels::setup(const mg::Stencil& s0, bool sink, int coarse_cells, i
     }
     // level 0 restricts its residual fused (row buffers), the 9-point levels through r
     for (std::size_t l = 1; l + 1 < levels_.size(); ++l) levels_[l].r.resize(levels_[l].nx, levels_[l].ny, 1);
-    rbuf_.assign(3 * std::size_t(s0.nx) * std::size_t(std::max(1, omp_get_max_threads())), 0.0);
+    rbuf_.assign(mg::scratch9_per_thread(s0.nx) * std::size_t(std::max(1, omp_get_max_threads())), 0.0);
   }
   update_threads();
   // operators and prolongations, level by level
@@ -144,6 +144,14 @@ void GalerkinLevels::build_coarse_solver() {
 
 void GalerkinLevels::coarse_solve(int /*l*/, View x, CView f) { coarse_->solve(x, f); }
 
+mg::Scratch GalerkinLevels::scratch() {
+  mg::Scratch sc;
+  sc.p = rbuf_.data();
+  sc.per_thread = mg::scratch9_per_thread(levels_[0].nx);
+  sc.nthreads = int(rbuf_.size() / sc.per_thread);
+  return sc;
+}
+
 void GalerkinLevels::cycle(const mg::Stencil& s0, View x, CView f, bool f_cycle, double* res2) {
   cycle(0, s0, x, f, f_cycle, res2);
 }
@@ -159,11 +167,10 @@ void GalerkinLevels::cycle(int l, const mg::Stencil& s0, View x, CView f, bool f
   }
   Level& F = levels_[l];
   Level& C = levels_[l + 1];
-  // pre-smoothing and the residual
+  // pre-smoothing and the residual (finest level: one pass, walls in y)
   if (l == 0) {
-    if (pre_ > 0) mg::smooth_rbgs(s0, x, f, pre_, /*black_first=*/false, fine_omega_);
-    mg::residual_restrict5(s0, x, f, prolongation(0), C.f.view(), rbuf_.data(),
-                           std::min(F.threads, int(rbuf_.size() / (3 * std::size_t(F.nx)))));
+    mg::smooth_rbgs_restrict9(s0, x, f, pre_, /*black_first=*/false, fine_omega_, prolongation(0),
+                              C.f.view(), scratch());
   } else {
     const mg::Stencil9 s = stencil(l);
     if (pre_ > 0) mg::smooth9(s, x, f, pre_, /*reverse=*/false, kCoarseOmega);
@@ -177,16 +184,19 @@ void GalerkinLevels::cycle(int l, const mg::Stencil& s0, View x, CView f, bool f
   });
   cycle(l + 1, s0, xc, C.f.cview(), f_cycle, nullptr);
   if (f_cycle) cycle(l + 1, s0, xc, C.f.cview(), false, nullptr);
-  mg::prolong9_add(P, C.x.cview(), x, F.threads);
-  // post-smoothing (reversed colour order for a symmetric cycle)
+  // prolongation and post-smoothing (reversed colour order for a symmetric cycle; finest
+  // level: one pass, walls in y)
   if (l == 0) {
-    mg::fill_ghosts(s0, x);
     if (post_ > 0) {
-      mg::smooth_rbgs(s0, x, f, post_, /*black_first=*/symmetric_, fine_omega_, res2);
-    } else if (res2) {
-      *res2 = mg::residual(s0, x, f, View{});
+      mg::prolong9_smooth_rbgs(s0, P, C.x.cview(), x, f, post_, /*black_first=*/symmetric_,
+                               fine_omega_, scratch(), res2);
+    } else {
+      mg::prolong9_add(P, C.x.cview(), x, F.threads);
+      mg::fill_ghosts(s0, x);
+      if (res2) *res2 = mg::residual(s0, x, f, View{});
     }
   } else {
+    mg::prolong9_add(P, C.x.cview(), x, F.threads);
     const mg::Stencil9 s = stencil(l);
     if (post_ > 0) {
       mg::smooth9(s, x, f, post_, /*reverse=*/symmetric_, kCoarseOmega, res2);

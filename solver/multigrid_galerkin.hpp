@@ -61,9 +61,11 @@ class GalerkinLevels {
   void cycle(int l, const mg::Stencil& s0, View x, CView f, bool f_cycle, double* res2);
   void coarse_solve(int l, View x, CView f);
   void build_coarse_solver();
+  /// rbuf_ as the finest level's per-thread scratch (mg::scratch9_per_thread each).
+  mg::Scratch scratch();
 
   std::vector<Level> levels_;
-  std::vector<double> rbuf_;  ///< fine residual rows of the fused restriction (3 per thread)
+  std::vector<double> rbuf_;  ///< fine residual rows of the fused passes (scratch())
   bool sink_ = false, symmetric_ = false;
   int pre_ = 2, post_ = 2, coarse_cells_ = -1;
   double fine_omega_ = 1.0;
