@@ -370,9 +370,6 @@ double residual9(const Stencil9& s, CView x, CView f, View r) {
   });
 }
 
-namespace {
-}  // namespace
-
 void restrict9(const Prolong9& P, CView r, View fc, int threads) {
   const int nfy = P.nfy;
   parallel_rows_on(threads, 0, P.ncy, [&](int J) {
