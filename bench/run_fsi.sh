@@ -6,13 +6,16 @@
 #
 #   bash bench/run_fsi.sh                 # both cases, to the scenes' end times (hours on 1 core)
 #   CASES=fsi3 END=4 bash bench/run_fsi.sh
+#   CASES=fsi2 END=13.54 SETS="grid.nx=1000 grid.ny=164 time.dt=1.25e-4" TAG=_dx0.0025 \
+#     bash bench/run_fsi.sh      # FSI2 on the grid of dx = 0.0025 (about 2 h here)
 #
 # The tip comes from markers.csv, which refmap writes with each VTK frame (docs/tracers.md);
 # the scenes write a frame every 0.02 (FSI2) or 0.005 (FSI3), 25 or 38 samples per period of
 # the lift (half that per period of u_x and the drag). To keep the disk use bounded
 # this script deletes the frames as they come, except every 50th (for snapshots).
 # Knobs: BIN (default build/refmap), RAW (run directories, default /tmp/refmap_fsi),
-# CASES (fsi2 fsi3), END (override time.end), THREADS (default 1), WINDOW (seconds at the end
+# CASES (fsi2 fsi3), END (override time.end), SETS (more scene overrides, space-separated
+# key=value), TAG (appended to the run directory's and the outputs' names), THREADS (default 1), WINDOW (seconds at the end
 # of the run the statistics are taken over, default 2), SMOOTH (seconds of the centred running
 # mean taken of the forces before their statistics, default 0.01: removes the per-step noise of the
 # forcing force; lowers the amplitude of a 4 Hz sine by 0.2 %, of an 11 Hz one by 2 %).
@@ -35,9 +38,11 @@ prune() {  # delete the frames of $1 except every 50th and the newest, while pid
 }
 
 for c in ${CASES:-fsi2 fsi3}; do
-  out="$RAW/$c"
+  tag="${TAG:-}"
+  out="$RAW/$c$tag"
   extra=()
   [ -n "${END:-}" ] && extra+=(--set "time.end=$END")
+  for kv in ${SETS:-}; do extra+=(--set "$kv"); done
   OMP_NUM_THREADS="${THREADS:-1}" nice "$BIN" run "scenes/turek_hron_$c.toml" --out "$out" --quiet \
     "${extra[@]}" > "$RAW/$c.log" 2>&1 &
   pid=$!
@@ -45,9 +50,9 @@ for c in ${CASES:-fsi2 fsi3}; do
   wait "$pid" || { tail "$RAW/$c.log" >&2; exit 1; }
   wait
   rho_s=$(grep -m1 '^density = ' <(sed -n '/^name = "flag"/,$p' "scenes/turek_hron_$c.toml") | awk '{print $3}')
-  /usr/bin/python3 bench/fsi_summary.py "$out" "${c^^}" "$rho_s" "${WINDOW:-2}" "${SMOOTH:-0.01}" > "results/turek_hron_$c.csv"
-  /usr/bin/python3 bench/fsi_plot.py "$out" "results/figures/turek_hron_${c}_tip.png"
+  /usr/bin/python3 bench/fsi_summary.py "$out" "${c^^}" "$rho_s" "${WINDOW:-2}" "${SMOOTH:-0.01}" > "results/turek_hron_$c$tag.csv"
+  /usr/bin/python3 bench/fsi_plot.py "$out" "results/figures/turek_hron_$c${tag}_tip.png"
   last=$(ls "$out"/frame_[0-9]*.vti | tail -n 1)
-  /usr/bin/python3 bench/fsi_snapshot.py "$last" "results/figures/turek_hron_${c}_snapshot.png"
-  cat "results/turek_hron_$c.csv"
+  /usr/bin/python3 bench/fsi_snapshot.py "$last" "results/figures/turek_hron_$c${tag}_snapshot.png"
+  cat "results/turek_hron_$c$tag.csv"
 done
