@@ -206,8 +206,7 @@ RC = "semi_implicit+reach2+cfl8"  # the reach with the implicit stress's own ste
 def bounce(args, w, cases=((1e3, ("explicit", "semi_implicit", "semi_implicit+reach2", RC)),
                           (1e4, ("explicit", "semi_implicit", "semi_implicit+reach2", RC, RC + "+specific")),
                           (1e5, ("explicit", "semi_implicit", "semi_implicit+reach2", RC, RC + "+specific")))):
-    # variant "stress[+reachR][+cflP][+specific]": time.solid_stress, time.solid_implicit_reach
-    # = R, time.solid_implicit_cfl = P, solids.stress_blend = "specific" (docs/implicit.md)
+    # variants as variant_sets reads them, e.g. "semi_implicit+reach2+cfl8+specific"
     for mu_s, variants in cases:
         for variant in variants:
             sets = ["time.end=0.5", "output.interval=0", "solid[0].mu_s=%g" % mu_s] + variant_sets(variant)

@@ -514,7 +514,7 @@ struct PipeOut9 {
     rs.P = P;
     rs.fc = fc;
     rs.ring = scratch;
-    rs.slotW = round8(st.nx);
+    rs.slotW = rows9::row_slot(st.nx);
   }
 };
 

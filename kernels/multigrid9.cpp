@@ -382,14 +382,14 @@ void restrict9(const Prolong9& P, CView r, View fc, int threads) {
 
 std::size_t scratch9_per_thread(int nxf) {
   // the fused passes' ring of 4 fine rows (multigrid.cpp); residual_restrict5 uses 3
-  return 4 * ((std::size_t(nxf) + 7) / 8 * 8);
+  return 4 * rows9::row_slot(nxf);
 }
 
 void residual_restrict5(const Stencil& s, CView x, CView f, const Prolong9& P, View fc,
                         const Scratch& sc) {
   const int ncy = P.ncy, nfy = P.nfy;
   const int nt = std::max(1, std::min({s.threads, sc.nthreads, ncy}));
-  const std::size_t W = (std::size_t(s.nx) + 7) / 8 * 8;
+  const std::size_t W = rows9::row_slot(s.nx);
   // one chunk of coarse rows per thread; its first fine row below is computed twice
   parallel_rows_on(nt, 0, nt, [&](int t) {
     const int J0 = int(long(ncy) * t / nt), J1 = int(long(ncy) * (t + 1) / nt);

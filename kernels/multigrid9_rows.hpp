@@ -3,9 +3,15 @@
 // fine row and the restriction to one coarse row. Shared by the separate kernels
 // (multigrid9.cpp) and the fused smoothing passes of the finest level (multigrid.cpp), so
 // both do the same arithmetic per value.
+#include <cstddef>
+
 #include "kernels/multigrid9.hpp"
 
 namespace refmap::mg::rows9 {
+
+/// Doubles of one fine row's slot in a thread's scratch (nx rounded up to a multiple of 8):
+/// the rows residual_restrict5 and the fused passes keep (scratch9_per_thread).
+inline std::size_t row_slot(int nx) { return (std::size_t(nx) + 7) / 8 * 8; }
 
 /// Coarse index I + a (a in {0, 1}) in a direction of nc points: wrapped when periodic,
 /// -1 past a wall.

@@ -353,10 +353,7 @@ double Solid::min_dt(double p) const {
   // At finite strain the wave speed is sqrt(G_t / rho_s) with the model's tangent shear
   // modulus G_t (kernels/constitutive.hpp; neo-Hookean: G lambda_max(b)), the largest in the
   // solid at the last stress evaluation; at rest this is the paper's bound.
-  const double rest = with_constitutive_model(spec_, [](const auto& m) {
-    return m.wave_modulus({1.0, 0.0, 1.0});
-  });
-  return p * grid_.dx / std::sqrt(std::max(rest, max_wave_modulus_) / spec_.density);
+  return p * grid_.dx / std::sqrt(wave_modulus() / spec_.density);
 }
 
 std::size_t Solid::storage_bytes() const {
