@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "solver/simulation.hpp"
+
 namespace refmap {
 
 Actuation::Actuation(const ActuationSpec& spec, const std::string& solid_name)
@@ -23,6 +25,26 @@ Affine2 Actuation::at(double t) const {
     throw std::runtime_error(buf);
   }
   return {s, s * g, 0.0, 1.0 / s};
+}
+
+std::unique_ptr<ActuatedSolids> ActuatedSolids::from_scene(const Config& cfg) {
+  std::unique_ptr<ActuatedSolids> a;
+  for (std::size_t k = 0; k < cfg.solids.size(); ++k)
+    if (cfg.solids[k].actuation.enabled()) {
+      if (!a) {
+        a = std::make_unique<ActuatedSolids>();
+        a->per_solid_.resize(cfg.solids.size());
+      }
+      a->per_solid_[k] = std::make_unique<Actuation>(cfg.solids[k].actuation, cfg.solids[k].name);
+    }
+  return a;
+}
+
+void ActuatedSolids::at(StepPoint p, Simulation& sim, double dt) {
+  if (p != StepPoint::Begin) return;
+  auto& solids = sim.solids_mut();
+  for (std::size_t k = 0; k < per_solid_.size(); ++k)
+    if (per_solid_[k]) solids[k]->set_actuation(per_solid_[k]->at(sim.time() + dt));
 }
 
 }  // namespace refmap

@@ -1,9 +1,12 @@
 #pragma once
 // The actuation map A(t) of a solid (ActuationSpec, solver/config.hpp) from its expressions
 // of t; the stress kernels apply it (kernels/constitutive_actuation.hpp). docs/actuation.md.
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "kernels/constitutive_actuation.hpp"
+#include "solver/component.hpp"
 #include "solver/config.hpp"
 #include "solver/expression.hpp"
 
@@ -21,6 +24,20 @@ class Actuation {
   Expression stretch_, shear_;
   bool has_stretch_, has_shear_;
   std::string name_;
+};
+
+/// The actuated solids of a scene as a component (solver/component.hpp): before each step
+/// every actuated solid gets A(t + dt), so the stress of the step is that of the
+/// configuration at its end. Stateless: A is a function of t.
+class ActuatedSolids : public Component {
+ public:
+  /// Null when no solid of the scene is actuated.
+  static std::unique_ptr<ActuatedSolids> from_scene(const Config& cfg);
+  const char* name() const override { return "actuation"; }
+  void at(StepPoint p, Simulation& sim, double dt) override;
+
+ private:
+  std::vector<std::unique_ptr<Actuation>> per_solid_;  ///< null: that solid is not actuated
 };
 
 }  // namespace refmap

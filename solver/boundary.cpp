@@ -81,6 +81,15 @@ Mirror mirror_for(const SideBc& s, bool normal_component, double t, double scale
   return {1.0, 0.0};
 }
 
+}  // namespace
+
+bool velocity_prescribed(const SideBc& bc, bool normal_component) {
+  // (an inflow profile is held at its value of the step's start for a change over the step)
+  return bc.type != BcType::Periodic && mirror_for(bc, normal_component, 0.0, 1.0).sign < 0.0;
+}
+
+namespace {
+
 /// An inflow side's offset 2 scale U_in along the side (nullptr expression: none).
 struct Profile {
   const Expression* e = nullptr;

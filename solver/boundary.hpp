@@ -34,6 +34,13 @@ void fill_scalar_ghosts(Field& s, const std::array<SideBc, 4>& bc);
 /// every wall type (no-slip, moving, free-slip) is a FaceKind::Wall.
 Sides face_sides(const std::array<SideBc, 4>& bc);
 
+/// Is the velocity component normal (normal_component) or tangential to side bc given on
+/// the side (Dirichlet: no-slip and moving walls, a free-slip wall's normal component, an
+/// inflow)? Read from the ghost rule of fill_vector_ghosts (a ghost that mirrors the
+/// inside with the sign -1 holds a value on the face), so the implicit velocity step
+/// (solver/implicit_step.hpp) and the ghost fill cannot disagree.
+bool velocity_prescribed(const SideBc& bc, bool normal_component);
+
 /// Largest |normal velocity| of the inflow sides at time t over their faces (0 without
 /// an inflow side): the CFL bound must see the velocity that enters.
 double max_inflow_speed(const std::array<SideBc, 4>& bc, const Grid& g, double t);

@@ -9,8 +9,6 @@
 #include "solver/boundary.hpp"
 #include "solver/checkpoint_io.hpp"
 #include "solver/contact.hpp"
-#include "solver/markers.hpp"
-#include "solver/tracers.hpp"
 #include "solver/simulation.hpp"
 #include "solver/solid.hpp"
 
@@ -33,53 +31,46 @@ void get_pods(CheckpointReader& r, const std::string& tag, std::vector<T>& v) {
 
 }  // namespace
 
-void Simulation::save_state(CheckpointWriter& w) const {
-  w.put_f64("sim.t", t_);
-  w.put_i64("sim.step", nstep_);
-  const std::pair<const char*, const Field*> fields[] = {
-      {"u", &u_},     {"v", &v_},       {"p", &p_},     {"rho", &rho_}, {"rho_old", &rho_old_},
-      {"mu", &mu_},   {"uf", &uf_},     {"vf", &vf_},   {"dp", &dp_},   {"gxf", &gxf_},
-      {"gyf", &gyf_}, {"sxx", &sxx_},   {"sxy", &sxy_}, {"syy", &syy_}, {"cfx", &cfx_},
-      {"cfy", &cfy_}, {"beta_x", &beta_x_}, {"beta_y", &beta_y_}};
-  for (const auto& [name, f] : fields) w.put_field(std::string("sim.") + name, *f);
-  w.put_f64("sim.elastic_energy", elastic_energy_);
-  w.put_i64("sim.poisson_iterations", last_stats_.iterations);
-  w.put_f64("sim.poisson_residual", last_stats_.rel_residual);
-  w.put_i64("sim.solids", std::int64_t(solids_.size()));
-  for (std::size_t k = 0; k < solids_.size(); ++k) solids_[k]->save_state(w, "solid" + std::to_string(k));
-  w.put_i64("sim.contact", contact_ ? 1 : 0);
-  if (contact_) contact_->save_state(w);
-  if (bodies_) bodies_->save_state(w);  // rigid bodies' poses (solver/rigid_body.hpp)
-  // only scenes with tracers or markers have these records (their scene says so)
-  if (tracers_) tracers_->save_state(w);
-  if (markers_) markers_->save_state(w);
+void Simulation::register_solids_state() {
+  // a count record first, so that a checkpoint of a scene with other solids fails on it
+  state_.add_record(
+      "sim.solids", [this](CheckpointWriter& w) { w.put_i64("sim.solids", std::int64_t(solids_.size())); },
+      [this](CheckpointReader& r) {
+        if (r.get_i64("sim.solids") != std::int64_t(solids_.size()))
+          throw CheckpointError("checkpoint " + r.path() + ": its scene has another number of solids");
+      });
+  for (std::size_t k = 0; k < solids_.size(); ++k) {
+    const std::string tag = "solid" + std::to_string(k);
+    Solid& s = *solids_[k];
+    state_.add_record(
+        tag, [&s, tag](CheckpointWriter& w) { s.save_state(w, tag); },
+        [&s, tag](CheckpointReader& r) { s.load_state(r, tag); });
+  }
+  state_.add_record(
+      "sim.contact", [this](CheckpointWriter& w) { w.put_i64("sim.contact", contact_ ? 1 : 0); },
+      [this](CheckpointReader& r) {
+        if (r.get_i64("sim.contact") != (contact_ ? 1 : 0))
+          throw CheckpointError("checkpoint " + r.path() + ": contact state does not match the scene");
+      });
+  if (contact_)
+    state_.add_record(
+        "contact", [this](CheckpointWriter& w) { contact_->save_state(w); },
+        [this](CheckpointReader& r) { contact_->load_state(r); });
+  if (bodies_)  // rigid bodies' poses (solver/rigid_body.hpp)
+    state_.add_record(
+        "bodies", [this](CheckpointWriter& w) { bodies_->save_state(w); },
+        [this](CheckpointReader& r) { bodies_->load_state(r); });
 }
 
+void Simulation::save_state(CheckpointWriter& w) const { state_.save(w); }
+
 void Simulation::load_state(CheckpointReader& r) {
-  t_ = r.get_f64("sim.t");
-  nstep_ = long(r.get_i64("sim.step"));
-  const std::pair<const char*, Field*> fields[] = {
-      {"u", &u_},     {"v", &v_},       {"p", &p_},     {"rho", &rho_}, {"rho_old", &rho_old_},
-      {"mu", &mu_},   {"uf", &uf_},     {"vf", &vf_},   {"dp", &dp_},   {"gxf", &gxf_},
-      {"gyf", &gyf_}, {"sxx", &sxx_},   {"sxy", &sxy_}, {"syy", &syy_}, {"cfx", &cfx_},
-      {"cfy", &cfy_}, {"beta_x", &beta_x_}, {"beta_y", &beta_y_}};
-  for (const auto& [name, f] : fields) r.get_field(std::string("sim.") + name, *f);
-  elastic_energy_ = r.get_f64("sim.elastic_energy");
-  last_stats_.iterations = int(r.get_i64("sim.poisson_iterations"));
-  last_stats_.rel_residual = r.get_f64("sim.poisson_residual");
-  if (r.get_i64("sim.solids") != std::int64_t(solids_.size()))
-    throw CheckpointError("checkpoint " + r.path() + ": its scene has another number of solids");
-  for (std::size_t k = 0; k < solids_.size(); ++k) solids_[k]->load_state(r, "solid" + std::to_string(k));
-  if (r.get_i64("sim.contact") != (contact_ ? 1 : 0))
-    throw CheckpointError("checkpoint " + r.path() + ": contact state does not match the scene");
-  if (contact_) contact_->load_state(r);
-  if (bodies_) bodies_->load_state(r);
-  if (tracers_) tracers_->load_state(r);
-  if (markers_) markers_->load_state(r);
+  state_.load(r);
+  // caches keyed by the step count, and the pressure solver's operator of the restored
+  // density (as after the step that wrote it; a prescribed flow solves for no pressure)
   solid_diag_step_ = -1;
   ke_step_ = -1;
-  // the pressure solver's operator of the restored density (as after the step that wrote it)
-  poisson_->setup(poisson_operator());
+  if (cfg_.flow != FlowMode::Prescribed) poisson_->setup(poisson_operator());
 }
 
 void Solid::save_state(CheckpointWriter& w, const std::string& tag) const {

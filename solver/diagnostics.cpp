@@ -88,6 +88,8 @@ std::vector<std::string> diagnostic_columns(const Simulation& sim) {
       for (const SolidColumn& col : kBodyColumns) c.push_back("solid" + std::to_string(k) + "_" + col.name);
   if (sim.implicit_velocity())
     for (const Column& col : kImplicitColumns) c.push_back(col.name);
+  for (const auto& comp : sim.components())  // solver/component.hpp, in the order added
+    for (const std::string& name : comp->columns()) c.push_back(name);
   return c;
 }
 
@@ -104,6 +106,7 @@ std::vector<double> diagnostic_values(const Simulation& sim, double last_dt, dou
       for (const SolidColumn& col : kBodyColumns) v.push_back(col.value(r, k));
   if (sim.implicit_velocity())
     for (const Column& col : kImplicitColumns) v.push_back(col.value(r));
+  for (const auto& comp : sim.components()) comp->values(sim, v);
   return v;
 }
 

@@ -11,23 +11,6 @@ namespace refmap {
 
 namespace {
 
-/// Is velocity component comp (0 = u, 1 = v) prescribed on side s? The mirror of
-/// solver/boundary.cpp: ghost = -inside (+ 2 U) is a value on the face.
-bool prescribed(const SideBc& bc, int comp, Side s) {
-  const bool normal = (comp == 0) == (s == Left || s == Right);
-  switch (bc.type) {
-    case BcType::NoSlip:
-    case BcType::MovingWall: return true;
-    case BcType::FreeSlip: return normal;
-    // the inflow profile is held at its value of the step's start for the change d (a
-    // ramped profile's change over one step enters at the next step's explicit part)
-    case BcType::Inflow: return true;
-    case BcType::Outflow:  // zero normal derivative
-    case BcType::Periodic: return false;
-  }
-  return false;
-}
-
 /// The pressure solver's method and options (V-cycle, 2 + 2 red-black sweeps by default)
 /// with the velocity solve's own tolerance, time.implicit_tol. Its unknown is the change d
 /// over a step, so a relative residual tol leaves an error of about tol |d| per step,
@@ -49,7 +32,9 @@ PoissonOptions velocity_solver_options(const Config& cfg) {
 ImplicitVelocity::ImplicitVelocity(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg.bc)) {
   const int nx = cfg_.grid.nx, ny = cfg_.grid.ny, ng = Grid::ng;
   for (int comp = 0; comp < 2; ++comp)
-    for (int s = 0; s < 4; ++s) fixed_[std::size_t(comp)][std::size_t(s)] = prescribed(cfg_.bc[std::size_t(s)], comp, Side(s));
+    for (int s = 0; s < 4; ++s)  // component 0 (u) is normal to the left and right sides
+      fixed_[std::size_t(comp)][std::size_t(s)] =
+          velocity_prescribed(cfg_.bc[std::size_t(s)], (comp == 0) == (s == Left || s == Right));
   for (int comp = 0; comp < 2; ++comp) {
     bx_[std::size_t(comp)].resize(nx + 1, ny, ng);
     by_[std::size_t(comp)].resize(nx, ny + 1, ng);
@@ -250,6 +235,20 @@ void ImplicitVelocity::apply_rate(Field& u, Field& v, const Field& fx, const Fie
       v(i, j) += dv_(i, j);
     }
   });
+}
+
+void ImplicitVelocity::register_state(StateRegistry& reg) {
+  reg.add_field("implicit.du", du_);
+  reg.add_field("implicit.dv", dv_);
+  reg.add_field("implicit.du2", du2_);
+  reg.add_field("implicit.dv2", dv2_);
+  reg.add_value("implicit.dt1", dt1_);
+  reg.add_value("implicit.dt2", dt2_);
+  reg.add_count("implicit.steps", steps_);
+  reg.add_count("implicit.iterations", iterations_);
+  reg.add_value("implicit.residual", residual_);
+  reg.add_count("implicit.total_iterations", total_iterations_);
+  reg.add_value("implicit.sweep_change", sweep_change_);
 }
 
 }  // namespace refmap

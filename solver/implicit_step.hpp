@@ -32,6 +32,7 @@
 #include "core/field.hpp"
 #include "solver/config.hpp"
 #include "solver/poisson.hpp"
+#include "solver/state_registry.hpp"
 
 namespace refmap {
 
@@ -61,6 +62,11 @@ class ImplicitVelocity {
   int last_iterations() const { return iterations_; }
   double last_residual() const { return residual_; }
   long total_iterations() const { return total_iterations_; }
+
+  /// Registers what the next step reads of the last ones: the last two changes and steps
+  /// (the initial guesses extrapolate them, so a resumed run needs them to continue bit for
+  /// bit), the step count and the solve statistics the diagnostics report.
+  void register_state(StateRegistry& reg);
 
  private:
   SolveStats solve(int comp, const Field& f, const Field& rho, const Field& m, double dt, Field& d);

@@ -6,6 +6,8 @@
 #include <string>
 
 #include "solver/checkpoint_io.hpp"
+#include "solver/simulation.hpp"
+#include "solver/state_registry.hpp"
 
 namespace refmap {
 
@@ -103,6 +105,15 @@ void Markers::load_state(CheckpointReader& r) {
     pts_[k].x = xy[2 * k];
     pts_[k].y = xy[2 * k + 1];
   }
+}
+
+void Markers::register_state(StateRegistry& reg) {
+  reg.add_record(
+      "markers", [this](CheckpointWriter& w) { save_state(w); }, [this](CheckpointReader& r) { load_state(r); });
+}
+
+void Markers::at(StepPoint p, Simulation& sim, double) {
+  if (p == StepPoint::End) update(sim.solids());
 }
 
 }  // namespace refmap

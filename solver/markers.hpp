@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "solver/component.hpp"
 #include "solver/solid.hpp"
 
 namespace refmap {
@@ -27,7 +28,8 @@ std::vector<std::array<double, 2>> marker_reference_points(const SolidSpec& spec
 /// 1e-10 dx in 50 iterations (x, y then hold the last iterate).
 bool solve_material_point(const Solid& s, const Grid& g, double X, double Y, double& x, double& y);
 
-class Markers {
+/// A component (solver/component.hpp): the points move at the end of every step.
+class Markers : public Component {
  public:
   explicit Markers(const std::vector<std::unique_ptr<Solid>>& solids, const Grid& g);
   bool empty() const { return count_ == 0; }
@@ -43,6 +45,11 @@ class Markers {
 
   void save_state(CheckpointWriter& w) const;
   void load_state(CheckpointReader& r);
+
+  // Component
+  const char* name() const override { return "markers"; }
+  void register_state(StateRegistry& reg) override;
+  void at(StepPoint p, Simulation& sim, double dt) override;
 
  private:
   Grid g_;

@@ -22,13 +22,7 @@
 
 namespace refmap {
 
-namespace {
-
-Sides face_boundary(const Config& c) { return face_sides(c.bc); }
-
-}  // namespace
-
-Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
+Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc)) {
   const int nx = cfg_.grid.nx, ny = cfg_.grid.ny, ng = Grid::ng;
   for (Field* f : {&u_, &v_, &p_, &rho_, &rho_old_, &mu_, &dp_, &rhs_, &mx_, &my_, &kx_, &ky_,
                    &sx_, &sy_, &fx_, &fy_})
@@ -38,7 +32,7 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
   for (Field* f : {&k2x_, &k2y_}) f->resize(nx, ny, ng);
   bool elastic = false;
   for (const SolidSpec& sp : cfg_.solids) {
-    solids_.push_back(std::make_unique<Solid>(sp, cfg_.solid_opt, cfg_.grid, face_boundary(cfg_), cfg_.rho_f));
+    solids_.push_back(std::make_unique<Solid>(sp, cfg_.solid_opt, cfg_.grid, sides_, cfg_.rho_f));
     elastic = elastic || sp.mu_s > 0.0;
   }
   if (elastic)
@@ -57,18 +51,6 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
   if (cfg_.solid_time == SolidStressTime::UpperConvected)
     for (Field* f : {&qxx_, &qxy_, &qyy_}) f->resize(nx, ny, ng);
   initialise();
-  if (!cfg_.tracers.empty())
-    tracers_ = std::make_unique<Tracers>(cfg_.grid, tracer_seeds(cfg_.tracers), cfg_.bc[0].type == BcType::Periodic,
-                                         cfg_.bc[2].type == BcType::Periodic);
-  if (auto m = std::make_unique<Markers>(solids_, cfg_.grid); !m->empty()) markers_ = std::move(m);
-  for (const SolidSpec& sp : cfg_.solids)
-    if (sp.actuation.enabled()) {
-      actuation_.resize(cfg_.solids.size());
-      break;
-    }
-  for (std::size_t k = 0; k < actuation_.size(); ++k)
-    if (cfg_.solids[k].actuation.enabled())
-      actuation_[k] = std::make_unique<Actuation>(cfg_.solids[k].actuation, cfg_.solids[k].name);
   if (!solids_.empty()) {
     // velocity scale of the contact pressure (solver/contact.hpp): the largest initial
     // speed on the grid and the free-fall speed over the domain along g
@@ -88,7 +70,51 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
     contact_->observe(t_, solids_, solid_diagnostics());
     solid_diag_step_ = -1;  // u_mut()/v_mut() may still change the initial state
   }
+  register_state();
+  add_components();
 }
+
+void Simulation::register_state() {
+  // the checkpoint's records, in this order (solver/checkpoint.cpp)
+  state_.add_value("sim.t", t_);
+  state_.add_count("sim.step", nstep_);
+  const std::pair<const char*, Field*> fields[] = {
+      {"u", &u_},     {"v", &v_},       {"p", &p_},     {"rho", &rho_}, {"rho_old", &rho_old_},
+      {"mu", &mu_},   {"uf", &uf_},     {"vf", &vf_},   {"dp", &dp_},   {"gxf", &gxf_},
+      {"gyf", &gyf_}, {"sxx", &sxx_},   {"sxy", &sxy_}, {"syy", &syy_}, {"cfx", &cfx_},
+      {"cfy", &cfy_}, {"beta_x", &beta_x_}, {"beta_y", &beta_y_}};
+  for (const auto& [name, f] : fields) state_.add_field(std::string("sim.") + name, *f);
+  state_.add_value("sim.elastic_energy", elastic_energy_);
+  state_.add_count("sim.poisson_iterations", last_stats_.iterations);
+  state_.add_value("sim.poisson_residual", last_stats_.rel_residual);
+  register_solids_state();
+  if (implicit_) implicit_->register_state(state_);  // its initial guesses (warm start)
+}
+
+void Simulation::add_components() {
+  // the order of the hooks at each step point: actuation first (the stress of the step
+  // needs A(t + dt)), then the tracers (the velocity of the step's start), the markers
+  if (auto a = ActuatedSolids::from_scene(cfg_)) add_component(std::move(a));
+  if (!cfg_.tracers.empty())
+    add_component(std::make_unique<Tracers>(cfg_.grid, tracer_seeds(cfg_.tracers), cfg_.bc[0].type == BcType::Periodic,
+                                            cfg_.bc[2].type == BcType::Periodic));
+  if (auto m = std::make_unique<Markers>(solids_, cfg_.grid); !m->empty()) add_component(std::move(m));
+}
+
+void Simulation::add_component(std::unique_ptr<Component> c) {
+  c->register_state(state_);
+  components_.push_back(std::move(c));
+}
+
+void Simulation::call_components(StepPoint p, double dt) {
+  for (const auto& c : components_) {
+    ScopedPhase ph(timers_, c->name());
+    c->at(p, *this, dt);
+  }
+}
+
+const Tracers* Simulation::tracers() const { return component<Tracers>(); }
+const Markers* Simulation::markers() const { return component<Markers>(); }
 
 namespace {
 
@@ -265,19 +291,18 @@ void Simulation::initialise() {
   // Initial projection: make the face velocities exactly divergence-free (and remove the
   // discrete divergence of the initial cell field) without touching the pressure.
   apply_velocity_bc(u_, v_, t_);
-  const Sides fb = face_boundary(cfg_);
   gxf_.fill(0.0);
   gyf_.fill(0.0);
   predict_face_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), uf_.view(), vf_.view(),
-                        g.nx, g.ny, 0.0, fb);
+                        g.nx, g.ny, 0.0, sides_);
   face_divergence(uf_.view(), vf_.view(), rhs_.view(), g.nx, g.ny, g.dx, 1.0);
   dp_.fill(0.0);
   last_stats_ = poisson_->solve(rhs_, dp_);
   fill_scalar_ghosts(dp_, cfg_.bc);
   correct_face_velocity(uf_.view(), vf_.view(), dp_.view(), beta_x_.view(), beta_y_.view(), g.nx,
-                        g.ny, g.dx, 1.0, fb);
+                        g.ny, g.dx, 1.0, sides_);
   face_accel(dp_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
-             g.dx, 0.0, 0.0, cfg_.rho_f, fb);
+             g.dx, 0.0, 0.0, cfg_.rho_f, sides_);
   correct_cell_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny, 1.0);
   apply_velocity_bc(u_, v_, t_);
   dp_.fill(0.0);
@@ -289,19 +314,18 @@ void Simulation::apply_velocity_bc(Field& u, Field& v, double t) const {
 
 void Simulation::build_poisson_coefficients() {
   const Grid& g = cfg_.grid;
-  face_beta(rho_.view(), beta_x_.view(), beta_y_.view(), g.nx, g.ny, face_boundary(cfg_));
+  face_beta(rho_.view(), beta_x_.view(), beta_y_.view(), g.nx, g.ny, sides_);
   poisson_->setup(poisson_operator());
 }
 
 PoissonOperator Simulation::poisson_operator() {
   PoissonOperator op;
   op.grid = cfg_.grid;
-  const Sides fb = face_boundary(cfg_);
-  op.sides = fb.pressure();
+  op.sides = sides_.pressure();
   op.beta_x = &beta_x_;
   op.beta_y = &beta_y_;
   // an outflow side fixes the pressure's constant: the problem is no longer singular
-  if (outflow_sink(beta_x_, beta_y_, fb, cfg_.grid, sink_)) op.sink = &sink_;
+  if (outflow_sink(beta_x_, beta_y_, sides_, cfg_.grid, sink_)) op.sink = &sink_;
   return op;
 }
 
@@ -364,6 +388,7 @@ double Simulation::stable_dt() const {
     const double dt_contact = contact_->min_dt(rho_min);
     if (dt > dt_contact && !contact_->clear_of_contact(umax, dt)) dt = dt_contact;
   }
+  for (const auto& c : components_) dt = std::min(dt, c->max_dt(*this));
   return dt;
 }
 
@@ -372,17 +397,16 @@ void Simulation::add_contact_face_accel() {
   // nothing to add when no face got a contact force (G_f - beta_f * (+0) is G_f, bit for bit)
   if (!(contact_ && contact_->force_enabled()) || !contact_force_written_) return;
   const Grid& g = cfg_.grid;
-  const Sides sides = face_boundary(cfg_);
   // the boundary faces of a direction: a wall face carries no normal velocity (nothing to
   // add); a periodic direction's faces 0 and n are one face
   bool x_seam = false, y_seam = false;
-  switch (sides[Left]) {
+  switch (sides_[Left]) {
     case FaceKind::Wall:
     case FaceKind::Inflow:
     case FaceKind::Outflow: break;  // no contact force on an open face (solver/contact.cpp)
     case FaceKind::Periodic: x_seam = true; break;
   }
-  switch (sides[Bottom]) {
+  switch (sides_[Bottom]) {
     case FaceKind::Wall:
     case FaceKind::Inflow:
     case FaceKind::Outflow: break;
@@ -403,29 +427,10 @@ void Simulation::add_contact_face_accel() {
 }
 
 double Simulation::step(double dt) {
-  if (!actuation_.empty()) {
-    // actuated solids: the stress of this step is that of the configuration at its end
-    if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
-    for (std::size_t k = 0; k < solids_.size(); ++k)
-      if (actuation_[k]) solids_[k]->set_actuation(actuation_[k]->at(t_ + dt));
-  }
-  if (!tracers_ && !markers_) return step_state(dt);
-  // tracers see the velocity at both ends of the step (solver/tracers.hpp)
-  if (tracers_) {
-    tu_ = u_;
-    tv_ = v_;
-    apply_velocity_bc(tu_, tv_, t_);
-    tracers_->begin_step(tu_, tv_);
-  }
+  if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
+  call_components(StepPoint::Begin, dt);
   dt = step_state(dt);
-  ScopedPhase ph(timers_, "tracers");
-  if (tracers_) {
-    tu_ = u_;
-    tv_ = v_;
-    apply_velocity_bc(tu_, tv_, t_);
-    tracers_->advance(tu_, tv_, dt);
-  }
-  if (markers_) markers_->update(solids_);
+  call_components(StepPoint::End, dt);
   return dt;
 }
 
@@ -619,7 +624,7 @@ void Simulation::face_accelerations() {
   const Grid& g = cfg_.grid;
   fill_scalar_ghosts(p_, cfg_.bc);
   face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
-             g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, face_boundary(cfg_));
+             g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, sides_);
   add_contact_face_accel();
   timers_.add("face velocities", std::chrono::duration<double>(PhaseTimers::clock::now() - t0).count(), 0);
 }
@@ -627,12 +632,11 @@ void Simulation::face_accelerations() {
 void Simulation::predict_face_velocities(double dt) {
   ScopedPhase ph(timers_, "face velocities");
   const Grid& g = cfg_.grid;
-  const Sides fb = face_boundary(cfg_);
   apply_velocity_bc(u_, v_, t_ + dt);
   // step 5, eq. (5.3): Rhie-Chow-like face velocity with the old pressure and the body force
   // (G_f from face_accelerations)
   predict_face_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), uf_.view(), vf_.view(),
-                        g.nx, g.ny, dt, fb);
+                        g.nx, g.ny, dt, sides_);
   face_divergence(uf_.view(), vf_.view(), rhs_.view(), g.nx, g.ny, g.dx, 1.0 / dt);
 }
 
@@ -645,7 +649,6 @@ void Simulation::solve_pressure() {
 void Simulation::project(double dt) {
   ScopedPhase ph(timers_, "projection");
   const Grid& g = cfg_.grid;
-  const Sides fb = face_boundary(cfg_);
   fill_scalar_ghosts(dp_, cfg_.bc);
   // step 7, eq. (5.5)
   parallel_rows(0, g.ny, g.nx, [&](int j) {
@@ -654,10 +657,10 @@ void Simulation::project(double dt) {
   fill_scalar_ghosts(p_, cfg_.bc);
   // step 8, eq. (5.6): exactly divergence-free face velocities
   correct_face_velocity(uf_.view(), vf_.view(), dp_.view(), beta_x_.view(), beta_y_.view(),
-                        g.nx, g.ny, g.dx, dt, fb);
+                        g.nx, g.ny, g.dx, dt, sides_);
   // step 9, eq. (5.7): cell velocities with the new pressure
   face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
-             g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, fb);
+             g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, sides_);
   add_contact_face_accel();
   correct_cell_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny, dt);
   apply_velocity_bc(u_, v_, t_ + dt);

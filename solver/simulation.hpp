@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/component.hpp"
 #include "solver/config.hpp"
 #include "solver/contact.hpp"
 #include "solver/implicit_step.hpp"
@@ -14,6 +15,7 @@
 #include "solver/poisson.hpp"
 #include "solver/rigid_body.hpp"
 #include "solver/solid.hpp"
+#include "solver/state_registry.hpp"
 #include "solver/timers.hpp"
 
 namespace refmap {
@@ -22,7 +24,6 @@ class CheckpointWriter;
 class CheckpointReader;
 class Tracers;
 class Markers;
-class Actuation;
 
 class Simulation {
  public:
@@ -51,8 +52,26 @@ class Simulation {
   Field& v_mut() { ke_step_ = -1; return v_; }
 
   /// Passive fluid tracers and solid material points (null when the scene has none).
-  const Tracers* tracers() const { return tracers_.get(); }
-  const Markers* markers() const { return markers_.get(); }
+  const Tracers* tracers() const;
+  const Markers* markers() const;
+
+  // components (solver/component.hpp)
+  /// Attaches a component: its state joins the checkpoint, its hooks the step, its columns
+  /// diagnostics.csv. The scene's own components are added by the constructor.
+  void add_component(std::unique_ptr<Component> c);
+  const std::vector<std::unique_ptr<Component>>& components() const { return components_; }
+  /// The first component of type T (null: none).
+  template <class T>
+  const T* component() const {
+    for (const auto& c : components_)
+      if (const T* p = dynamic_cast<const T*>(c.get())) return p;
+    return nullptr;
+  }
+  /// Every array and number that carries information from one step to the next
+  /// (solver/state_registry.hpp); save_state / load_state iterate it.
+  const StateRegistry& state() const { return state_; }
+  /// The solids, for components that change them between steps (actuation).
+  std::vector<std::unique_ptr<Solid>>& solids_mut() { solid_diag_step_ = -1; return solids_; }
 
   /// Cell field by probe/output name: u, v, p, density, speed, vorticity (ghosts filled).
   Field named_field(const std::string& name) const;
@@ -93,9 +112,9 @@ class Simulation {
   /// shared by the contact log and the diagnostics.csv row.
   const std::vector<SolidDiagnostics>& solid_diagnostics() const;
 
-  /// Everything step() needs to continue bit for bit (solver/checkpoint.cpp): time, step,
-  /// the flow fields, every solid's window and the contact tracker. load_state expects a
-  /// Simulation built from the same scene.
+  /// Everything step() needs to continue bit for bit (solver/checkpoint.cpp): the records
+  /// of state() in order. load_state expects a Simulation built from the same scene (and
+  /// with the same components added).
   void save_state(CheckpointWriter& w) const;
   void load_state(CheckpointReader& r);
 
@@ -104,7 +123,15 @@ class Simulation {
 
  private:
   void initialise();
-  /// step() without the tracers and markers (which step() moves around it).
+  /// The flow's and the solids' records of state_ (the components add theirs).
+  void register_state();
+  /// The solids', the contact tracker's and the rigid bodies' records (solver/checkpoint.cpp).
+  void register_solids_state();
+  /// The scene's components (tracers, markers, actuation), in the order of their hooks.
+  void add_components();
+  /// Calls every component's hook at point p, timed under the component's name.
+  void call_components(StepPoint p, double dt);
+  /// step() without the components' hooks (which step() calls around it).
   double step_state(double dt);
   void build_poisson_coefficients();
   /// The pressure solver's operator of the current beta (open sides as walls, the outflow
@@ -155,6 +182,8 @@ class Simulation {
   void add_contact_face_accel();
 
   Config cfg_;
+  /// The sides as the projection and the pressure solvers see them (built once).
+  Sides sides_;
   double t_ = 0.0;
   long nstep_ = 0;
 
@@ -186,10 +215,8 @@ class Simulation {
   Field mimp_;                                   ///< its implicit viscosity
   Field qxx_, qxy_, qyy_;                         ///< its upper-convected tensor (kernels/helmholtz.hpp)
   PhaseTimers timers_;
-  std::unique_ptr<Tracers> tracers_;
-  std::unique_ptr<Markers> markers_;
-  Field tu_, tv_;                          // end-of-step velocity with ghosts, for the tracers
-  std::vector<std::unique_ptr<Actuation>> actuation_;  ///< per solid (null: not actuated)
+  std::vector<std::unique_ptr<Component>> components_;
+  StateRegistry state_;
 };
 
 }  // namespace refmap

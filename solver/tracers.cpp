@@ -6,6 +6,8 @@
 #include "kernels/rk4.hpp"
 #include "solver/checkpoint_io.hpp"
 #include "solver/probes.hpp"
+#include "solver/simulation.hpp"
+#include "solver/state_registry.hpp"
 
 namespace refmap {
 
@@ -83,6 +85,25 @@ void Tracers::load_state(CheckpointReader& r) {
   r.get_field("tracers.y", y_);
   if (x_.nx() != n_ || y_.nx() != n_)
     throw CheckpointError("checkpoint " + r.path() + ": its scene has another number of tracers");
+}
+
+void Tracers::register_state(StateRegistry& reg) {
+  reg.add_record(
+      "tracers", [this](CheckpointWriter& w) { save_state(w); }, [this](CheckpointReader& r) { load_state(r); });
+}
+
+void Tracers::at(StepPoint p, Simulation& sim, double dt) {
+  // the cell velocity with its ghosts filled at the time of each end of the step
+  if (p == StepPoint::Begin) {
+    u0_ = sim.u();
+    v0_ = sim.v();
+    sim.apply_velocity_bc(u0_, v0_, sim.time());
+  } else {
+    u1_ = sim.u();
+    v1_ = sim.v();
+    sim.apply_velocity_bc(u1_, v1_, sim.time());
+    advance(u1_, v1_, dt);
+  }
 }
 
 }  // namespace refmap

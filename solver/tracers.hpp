@@ -7,6 +7,7 @@
 
 #include "core/field.hpp"
 #include "core/grid.hpp"
+#include "solver/component.hpp"
 #include "solver/config.hpp"
 
 namespace refmap {
@@ -19,7 +20,9 @@ class CheckpointReader;
 /// included (one point along a direction of size 1: the middle of the box).
 std::vector<std::array<double, 2>> tracer_seeds(const std::vector<TracerSeed>& seeds);
 
-class Tracers {
+/// A component (solver/component.hpp): it keeps the velocity of the step's start and moves
+/// the points at the step's end.
+class Tracers : public Component {
  public:
   /// periodic_x/y: positions are wrapped into the domain; otherwise clamped onto the walls
   /// (the interpolated normal velocity vanishes there, so only round-off reaches them).
@@ -40,6 +43,11 @@ class Tracers {
   void save_state(CheckpointWriter& w) const;
   void load_state(CheckpointReader& r);
 
+  // Component
+  const char* name() const override { return "tracers"; }
+  void register_state(StateRegistry& reg) override;
+  void at(StepPoint p, Simulation& sim, double dt) override;
+
  private:
   double wrap_x(double x) const;
   double wrap_y(double y) const;
@@ -49,6 +57,7 @@ class Tracers {
   Field x_, y_;                          // positions, n x 1
   Field sx_, sy_, accx_, accy_, kx_, ky_;  // RK-4 work (kernels/rk4.hpp)
   Field u0_, v0_;                         // velocity at the start of the step
+  Field u1_, v1_;                         // and at its end (with ghosts)
 };
 
 }  // namespace refmap

@@ -1,0 +1,46 @@
+#pragma once
+// An optional part of a run attached to a Simulation: tracers, material markers, actuated
+// solids, or anything a scene (or a test) adds. Simulation keeps the flow state and
+// Algorithm 1; a component
+//  * registers its persistent state once (StateRegistry: checkpointed by construction),
+//  * may limit the time step (max_dt),
+//  * is called at fixed, named points of Simulation::step (StepPoint) - the points stay in
+//    the step's order whatever the order in which components were added; at one point the
+//    components are called in the order they were added,
+//  * may add columns to diagnostics.csv (the values of the current state).
+// Adding one takes its own files and one line where the Simulation builds its components
+// (Simulation::add_components) - or add_component() from outside, as the tests do.
+#include <limits>
+#include <vector>
+
+namespace refmap {
+
+class Simulation;
+class StateRegistry;
+
+/// The points of Simulation::step at which components are called.
+enum class StepPoint {
+  /// Before anything moves; dt is already chosen (the state is that of time t).
+  Begin,
+  /// After the step (the state is that of time t + dt, Simulation::time() included).
+  End,
+};
+
+class Component {
+ public:
+  virtual ~Component() = default;
+  /// Its name: the phase its hooks are timed under in the timing table, and the prefix
+  /// of its checkpoint records.
+  virtual const char* name() const = 0;
+  /// Registers every array and number that carries information from one step to the next.
+  virtual void register_state(StateRegistry&) {}
+  /// Its limit on the next step for the current state (infinity: none).
+  virtual double max_dt(const Simulation&) const { return std::numeric_limits<double>::infinity(); }
+  /// Called at each point of every step, in the step's order.
+  virtual void at(StepPoint, Simulation&, double /*dt*/) {}
+  /// Its diagnostics.csv columns (fixed for the run) and their values for the current state.
+  virtual std::vector<std::string> columns() const { return {}; }
+  virtual void values(const Simulation&, std::vector<double>& /*out*/) const {}
+};
+
+}  // namespace refmap
