@@ -3,18 +3,19 @@
 # run's diagnostics.csv (wall_time column removed), events.csv and last VTK frame to OUT; with a second
 # directory, compares two such sets byte for byte. Used to show that a refactor keeps
 # the scenes' output identical.
-#   bash scripts/compare_scenes.sh run BINARY OUT [STEPS]   (STEPS default 40)
+#   bash scripts/compare_scenes.sh run BINARY OUT [STEPS]   (STEPS default 40; THREADS=N
+#                                                            for N OpenMP threads, default 1)
 #   bash scripts/compare_scenes.sh diff OUT_A OUT_B
 set -euo pipefail
 cd "$(dirname "$0")/.."
 case "${1:-}" in
   run)
-    bin=$2; out=$3; steps=${4:-40}
+    bin=$2; out=$3; steps=${4:-40}; threads=${THREADS:-1}
     mkdir -p "$out"
     for s in scenes/*.toml; do
       name=$(basename "$s" .toml)
       rm -rf "$out/run_$name"
-      OMP_NUM_THREADS=1 "$bin" run "$s" --out "$out/run_$name" --threads 1 --quiet \
+      OMP_NUM_THREADS=$threads "$bin" run "$s" --out "$out/run_$name" --threads "$threads" --quiet \
         --set time.max_steps="$steps" > "$out/$name.log" 2>&1 || echo "exit $? $name" >> "$out/$name.log"
       if [ -f "$out/run_$name/diagnostics.csv" ]; then
         # drop the wall_time column (by name) and the header comment line

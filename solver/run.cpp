@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -18,6 +19,7 @@
 #include "solver/probes.hpp"
 #include "solver/progress.hpp"
 #include "solver/simulation.hpp"
+#include "solver/schedule.hpp"
 #include "solver/step_landing.hpp"
 #include "solver/stop_signal.hpp"
 #include "solver/tracers.hpp"
@@ -334,16 +336,30 @@ CheckpointScene read_checkpoint_scene(CheckpointReader& r) {
   return c;
 }
 
+namespace {
+
+/// An output written during the run: when, and what. The list in run() is every output
+/// of a step, in the order they are written after it.
+struct ScheduledOutput {
+  const char* name;
+  bool enabled;
+  Schedule when;
+  std::function<void()> write;
+};
+
+/// A check of the state after a step: "" or what is wrong (solver/health.hpp).
+using HealthCheck = std::function<std::string(const Simulation&, double dt)>;
+
+}  // namespace
+
 RunSummary run(Simulation& sim, const RunOptions& opt) {
   const auto wall0 = std::chrono::steady_clock::now();
   const Config& cfg = sim.config();
   RunSummary sum;
-  // output schedule: steps land exactly on the frame times and the end time
   const double eps_t = 1e-12 * std::max(1.0, std::abs(cfg.t_end));
-  const double frame_interval = cfg.output_interval > 0.0 ? cfg.output_interval : cfg.t_end;
-  double next_frame = cfg.output_interval > 0.0 ? cfg.t_start + cfg.output_interval : cfg.t_end;
   double last_dt = 0.0;
   std::unique_ptr<RunOutput> outp;
+  double next_frame = cfg.output_interval > 0.0 ? cfg.t_start + cfg.output_interval : cfg.t_end;
   if (opt.resume) {
     CheckpointReader& r = *opt.resume;
     next_frame = r.get_f64("run.next_frame");
@@ -359,12 +375,16 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
     out.row(last_dt, wall_seconds_since(wall0));
   }
 
-  // checkpoints (solver/checkpoint.cpp): with every frame, every checkpoint_minutes of wall
-  // time and on SIGINT/SIGTERM; written to a temporary and renamed, so the file on disk is
-  // always a whole checkpoint
+  // the outputs of a step, in the order they are written: the diagnostics row, a frame
+  // (steps land on the frame times; with a checkpoint when output.checkpoint_frames), a
+  // checkpoint every checkpoint_minutes of wall time. A checkpoint (solver/checkpoint.cpp)
+  // is also written on SIGINT/SIGTERM; it goes to a temporary and is renamed, so the file
+  // on disk is always a whole checkpoint.
   const bool checkpoints = out.enabled() && !opt.scene_text.empty();
   const double ck_minutes = opt.checkpoint_minutes >= 0.0 ? opt.checkpoint_minutes : cfg.checkpoint_minutes;
-  auto last_ck = std::chrono::steady_clock::now();
+  const double frame_interval = cfg.output_interval > 0.0 ? cfg.output_interval : cfg.t_end;
+  enum { kRow, kFrame, kTimedCheckpoint };
+  std::vector<ScheduledOutput> outputs(3);
   auto write_checkpoint = [&]() {
     if (!checkpoints) return;
     ScopedPhase ph(sim.timers(), "checkpoint");
@@ -374,17 +394,30 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
     w.put_i64("scene.sets", std::int64_t(opt.sets.size()));
     for (const auto& s : opt.sets) w.put_string("scene.set", s);
     sim.save_state(w);
-    w.put_f64("run.next_frame", next_frame);
+    w.put_f64("run.next_frame", outputs[kFrame].when.next_time());
     w.put_f64("run.last_dt", last_dt);
     out.save_state(w);
     sum.checkpoint = (fs::path(out.dir()) / "checkpoint.bin").string();
     w.save(sum.checkpoint);
-    last_ck = std::chrono::steady_clock::now();
+    outputs[kTimedCheckpoint].when.advance();  // the wall clock counts from any checkpoint
   };
+  outputs[kRow] = {"diagnostics", true, Schedule::every_steps(std::max(1, cfg.diagnostics_every)),
+                   [&] { out.row(last_dt, wall_seconds_since(wall0)); }};
+  outputs[kFrame] = {"frame", out.frames(), Schedule::every_time(next_frame, frame_interval, cfg.t_end, eps_t), [&] {
+                       out.frame();
+                       if (cfg.checkpoint_frames) write_checkpoint();
+                     }};
+  outputs[kTimedCheckpoint] = {"checkpoint", checkpoints && ck_minutes > 0.0,
+                               Schedule::every_wall_seconds(60.0 * ck_minutes), write_checkpoint};
 
-  const int diag_every = std::max(1, cfg.diagnostics_every);
-  SteadyCheck steady(cfg.steady_tol);
+  // the checks of every step's state, in this order: a blow-up is reported as one before
+  // the folded reference map it causes (solver/health.hpp)
   EnergyJumpCheck blowup;
+  const std::vector<HealthCheck> health{check_health,
+                                        [&](const Simulation& s, double) { return blowup.check(s); },
+                                        [](const Simulation& s, double) { return check_reference_maps(s); }};
+
+  SteadyCheck steady(cfg.steady_tol);
   // phase timers cover the steps after the warm-up (and the final output)
   auto timed0 = wall0;
   long timed_step0 = sim.steps();
@@ -401,7 +434,8 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
     if (cfg.max_steps > 0 && sim.steps() >= cfg.max_steps) break;
     double dt = cfg.dt_fixed > 0.0 ? cfg.dt_fixed : sim.stable_dt();
     dt = landing_step(dt, cfg.t_end - sim.time(), eps_t);
-    if (out.frames() && next_frame < cfg.t_end) dt = landing_step(dt, next_frame - sim.time(), eps_t);
+    for (const ScheduledOutput& o : outputs)
+      if (o.enabled) dt = o.when.land(dt, sim.time());
     steady.before_step(sim);
     const long step0 = sim.steps();
     const double t0 = sim.time();
@@ -418,9 +452,9 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
     last_dt = dt;
 
     try {
-      std::string bad = check_health(sim, dt);
-      if (bad.empty()) bad = blowup.check(sim);
-      if (bad.empty()) bad = check_reference_maps(sim);
+      std::string bad;
+      for (const HealthCheck& h : health)
+        if (bad = h(sim, dt); !bad.empty()) break;
       if (!bad.empty()) {
         out.row(last_dt, wall_seconds_since(wall0));
         fail(bad);
@@ -430,15 +464,11 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
         }
         break;
       }
-      if (sim.steps() % diag_every == 0) out.row(last_dt, wall_seconds_since(wall0));
-      if (out.frames() && sim.time() >= next_frame - eps_t && sim.time() < cfg.t_end - eps_t) {
-        out.frame();
-        next_frame += frame_interval;
-        if (cfg.checkpoint_frames) write_checkpoint();
-      }
-      if (ck_minutes > 0.0 &&
-          std::chrono::steady_clock::now() - last_ck >= std::chrono::duration<double>(60.0 * ck_minutes))
-        write_checkpoint();
+      for (ScheduledOutput& o : outputs)
+        if (o.enabled && o.when.due(sim.steps(), sim.time())) {
+          o.when.advance();
+          o.write();
+        }
       if (const int sig = stop_requested()) {
         write_checkpoint();
         sum.signal = sig;
@@ -463,9 +493,9 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
     }
   }
   progress.finish();
-  try {
+  try {  // the end of the run: the last row and frame (unless written), probes, events
     if (!sum.failed) {
-      if (sim.steps() % diag_every != 0) out.row(last_dt, wall_seconds_since(wall0));
+      if (!outputs[kRow].when.due(sim.steps(), sim.time())) out.row(last_dt, wall_seconds_since(wall0));
       if (!sum.signal) out.frame();
       out.probes();
     }
