@@ -224,6 +224,9 @@ struct Config {
   /// and every this many wall minutes (0: not by wall time); refmap run --checkpoint-minutes
   double checkpoint_minutes = 30.0;
   int diagnostics_every = 1;     ///< steps between rows of diagnostics.csv
+  /// output.wall_stress: the shear stress on the bottom and top walls and the relative
+  /// viscosity of a shear cell in diagnostics.csv (solver/wall_stress.hpp)
+  bool wall_stress = false;
   double log_interval_s = 2.0;   ///< wall seconds between log lines when not on a terminal
   std::vector<ProbeSpec> probes;
   std::vector<TracerSeed> tracers;  ///< passive fluid tracers (solver/tracers.hpp)

@@ -826,6 +826,10 @@ void parse_output(const Ctx& ctx, const Table& top, Config& cfg) {
             "must be <= " + std::to_string(std::numeric_limits<int>::max()) + ", got " + std::to_string(de));
   cfg.diagnostics_every = int(de);
   cfg.log_interval_s = o.number("log_interval");
+  cfg.wall_stress = o.boolean("wall_stress");
+  auto wall = [](const SideBc& b) { return b.type == BcType::NoSlip || b.type == BcType::MovingWall; };
+  o.require(!cfg.wall_stress || (wall(cfg.bc[Bottom]) && wall(cfg.bc[Top])), "wall_stress",
+            "needs no-slip or moving walls at the bottom and the top");
 }
 
 void parse_probes(const Ctx& ctx, const Table& top, Config& cfg) {

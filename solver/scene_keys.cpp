@@ -251,6 +251,9 @@ std::vector<KeyDef> build_keys() {
       num("output", "checkpoint_minutes", d.checkpoint_minutes, ge(0, "0 = not by wall time"),
           "also write a checkpoint every this many wall minutes (`--checkpoint-minutes` overrides)"),
       integer("output", "diagnostics_every", d.diagnostics_every, ge(1), "steps between rows of `diagnostics.csv`"),
+      boolean("output", "wall_stress", d.wall_stress,
+              "shear stress on the bottom and top walls and the relative viscosity of a shear cell in "
+              "`diagnostics.csv` (both must be walls)"),
       num("output", "log_interval", d.log_interval_s, gt(0, "seconds"),
           "wall seconds between progress log lines when stderr is not a terminal"),
 

@@ -19,6 +19,7 @@
 #include "solver/expression.hpp"
 #include "solver/markers.hpp"
 #include "solver/tracers.hpp"
+#include "solver/wall_stress.hpp"
 
 namespace refmap {
 
@@ -99,6 +100,7 @@ void Simulation::add_components() {
     add_component(std::make_unique<Tracers>(cfg_.grid, tracer_seeds(cfg_.tracers), cfg_.bc[0].type == BcType::Periodic,
                                             cfg_.bc[2].type == BcType::Periodic));
   if (auto m = std::make_unique<Markers>(solids_, cfg_.grid); !m->empty()) add_component(std::move(m));
+  if (cfg_.wall_stress) add_component(std::make_unique<WallStress>(cfg_));
 }
 
 void Simulation::add_component(std::unique_ptr<Component> c) {

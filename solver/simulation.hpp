@@ -46,6 +46,7 @@ class Simulation {
   const Field& v() const { return v_; }
   const Field& p() const { return p_; }
   const Field& rho() const { return rho_; }
+  const Field& mu() const { return mu_; }  ///< the blended viscosity, eq. (3.6)
   const Field& uf() const { return uf_; }  ///< x-face normal velocity, (nx+1) x ny
   const Field& vf() const { return vf_; }  ///< y-face normal velocity, nx x (ny+1)
   Field& u_mut() { ke_step_ = -1; return u_; }
