@@ -4,7 +4,7 @@
 Prints a markdown table of the medians over the rounds (ns per unknown where the benchmark
 reports it, else the real time in the benchmark's unit) and the ratio B / A, and keeps every
 row in --raw (CSV). The machine is shared and noisy: interleaving puts A and B under the same
-load, and the median of several rounds is what results/README.md quotes.
+load, and the median of several rounds is what results/multigrid.md quotes.
 
     python3 bench/compare_binaries.py OLD/refmap_bench NEW/refmap_bench \
         --filter '^PoissonContrast/V/average/(256|1024|2048)/1/' --rounds 5 --threads 1

@@ -7,7 +7,7 @@ with rho = 1, U = 0.2 (the mean inflow), D = 0.1; probe_p_front_back.csv gives
 Delta p = p(0.15, 0.2) - p(0.25, 0.2); probe_u_wake.csv (u on y = 0.2 from the back of the
 cylinder, x = 0.25, to x = 0.45) the recirculation length L_a = x_r - 0.25, x_r the last zero
 of u (linear between samples) after which u stays positive. The reference bounds of
-Schafer & Turek (1996), BENCHMARKS.md section 7g, are written as two more rows.
+Schafer & Turek (1996), docs/references.md#cylinder-in-a-channel-at-re--20, are written as two more rows.
 Standard library only. Usage: cylinder_summary.py RUN_DIR... > results/cylinder_re20.csv
 """
 import csv
@@ -43,7 +43,7 @@ def recirculation(xs, us):
 def summarise(run):
     head, rows = read_csv(run + "/diagnostics.csv")
     # the last FULL step: a step cut short to land on the end time has a different slip in the
-    # partly forced cells, so its force is off (results/README.md)
+    # partly forced cells, so its force is off (results/validation.md, "Flow past a cylinder")
     k_dt = head.index("dt")
     dt_full = max(float(r[k_dt]) for r in rows)
     last = dict(zip(head, [r for r in rows if float(r[k_dt]) > 0.99 * dt_full][-1]))

@@ -24,7 +24,7 @@ Usage: fsi_summary.py RUN_DIR CASE RHO_S [WINDOW [SMOOTH [T_END]]] -> CSV rows o
 import csv
 import sys
 
-REF = {  # BENCHMARKS.md 7d: mean, amplitude, frequency
+REF = {  # docs/references.md#turek-and-hron-fsi-benchmark: mean, amplitude, frequency
     "FSI2": {"ux": (-14.58e-3, 12.44e-3, 3.8), "uy": (1.23e-3, 80.6e-3, 2.0),
              "drag": (208.83, 73.75, 3.8), "lift": (0.88, 234.2, 2.0)},
     "FSI3": {"ux": (-2.69e-3, 2.53e-3, 10.9), "uy": (1.48e-3, 34.38e-3, 5.3),

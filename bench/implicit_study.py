@@ -1,4 +1,4 @@
-"""Runs of bench/run_implicit_study.sh: explicit vs semi-implicit stepping (issue 14)."""
+"""Runs of bench/run_implicit_study.sh: explicit vs semi-implicit stepping (results/implicit.md)."""
 import argparse, csv, math, os, subprocess, time
 
 SEMI = ["time.viscous=implicit", "time.solid_stress=semi_implicit"]

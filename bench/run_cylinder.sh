@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Flow past a fixed cylinder at Re = 20 (Schafer & Turek 1996, test 2D-1; issue 16 item 1;
-# BENCHMARKS.md section 7g): scenes/cylinder_re20.toml run to its steady state on several
+# Flow past a fixed cylinder at Re = 20 (Schafer & Turek 1996, test 2D-1;
+# docs/references.md#cylinder-in-a-channel-at-re--20): scenes/cylinder_re20.toml run to its steady state on several
 # grids, then bench/cylinder_summary.py writes results/cylinder_re20.csv (c_D, c_L, Delta p,
 # recirculation length per grid, and the published bounds).
 #
@@ -9,9 +9,9 @@
 #
 # Knobs: BIN (refmap executable, default build/refmap), RAW (run directories, default
 # /tmp/refmap_cylinder), GRIDS (dx values among 0.01 0.005 0.0025), THREADS (default 1; the
-# 0.0025 grid uses THREADS_FINE, default 2, with OMP_WAIT_POLICY=PASSIVE: docs MACHINE notes),
+# 0.0025 grid uses THREADS_FINE, default 2, with OMP_WAIT_POLICY=PASSIVE: docs/performance.md, threads),
 # VISCOUS ("explicit" or "implicit", default "implicit": on the finer grids the explicit
-# viscous limit rho dx^2 / (6 mu) is below the advective one, see results/README.md),
+# viscous limit rho dx^2 / (6 mu) is below the advective one, see results/validation.md),
 # RADIUS_STUDY (default 1: one extra run on dx = 0.005 with the radius reduced by dx/2, to
 # measure where the diffuse surface of the direct forcing sits), FINE_STEPS (default 2600: the
 # 0.0025 grid stops after 2600 steps, t = 6.03, instead of its steady state near t = 17; on the

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Turek & Hron (2006) FSI2 / FSI3 (issue 16 item 6; BENCHMARKS.md section 7d): runs
+# Turek & Hron (2006) FSI2 / FSI3 (docs/references.md#turek-and-hron-fsi-benchmark; results/fsi.md): runs
 # scenes/turek_hron_fsi{2,3}.toml and summarises the tip displacement and the forces with
 # bench/fsi_summary.py into results/turek_hron_fsi{2,3}.csv, the tip trajectory figure with
 # bench/fsi_plot.py, a snapshot of the vorticity at the last frame with bench/fsi_snapshot.py.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Explicit against semi-implicit stepping (issue 14; docs/implicit.md): one run each of
+# Explicit against semi-implicit stepping (docs/implicit.md; results/implicit.md): one run each of
 # couette_elastic (64 cells per unit), the shear wave (scenes/shear_wave.toml) over dt,
 # soft_disc_cavity (to t = 1), bounce_stiff at mu_s = 1e3, 1e4, 1e5 (to t = 0.5; the explicit
 # small-dt run at 1e3) and disc_tgv; the velocity solve's tolerance time.implicit_tol on

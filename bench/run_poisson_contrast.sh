@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The multigrid density-contrast study (issue 15 item 3): the standard Poisson problem
+# The multigrid density-contrast study (results/multigrid.md): the standard Poisson problem
 # (tests/fixtures/poisson_problem.hpp, standard_problem(N, R)) solved to 1e-8 by V(2,2)
 # V(2,2) and F(2,2) cycles and by MGPCG, with each coarse operator (solver.coarse_operator: "average", the
 # restriction-weighted mean of beta; "harmonic", fine faces in series normal to the coarse
@@ -15,7 +15,7 @@
 #       # results/raw/poisson_contrast_<t>t<TAG>.json; the CSV is made from every
 #       # poisson_contrast_<t>t*.json of the thread counts in THREADS, in name order, a later
 #       # file's row replacing an earlier one of the same case
-#   The setup cost of each coarse operator (not in the CSV; quoted in results/README.md):
+#   The setup cost of each coarse operator (not in the CSV; quoted in results/multigrid.md):
 #   OMP_NUM_THREADS=1 build/bench/refmap_bench --benchmark_filter='^PoissonContrastSetup/' 
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

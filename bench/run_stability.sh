@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Where each method fails (issue 13): stability and robustness maps from whole runs of
+# Where each method fails (results/stability.md): stability and robustness maps from whole runs of
 # build/refmap on coarse grids (bench/stability.py says what is swept and how each run is
 # classified). Regenerates results/stability.csv, results/stability_limits.csv and the
 # charts results/stability_{solid_cfl,deformation,density,contact,resolution}.png and the

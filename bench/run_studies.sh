@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Whole-run studies of issue #5 (items 6 and 8), made with the refmap executable and the
+# Whole-run studies (results/performance.md, "Whole-run studies"), made with the refmap executable and the
 # scene files (no code of their own beyond the analysis in bench/studies.py):
 #
 #  1. scene costs: microseconds per cell per step of the paper's scenes, by phase (the

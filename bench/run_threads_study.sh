@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Threads across solids (issue 15): wall time per step of the many-small-solids scenes and
+# Threads across solids (results/threads.md): wall time per step of the many-small-solids scenes and
 # two small-grid scenes on 1 and 2 threads, two binaries interleaved (1 thread then 2,
 # binary A then B, repeated), under a wait policy and optionally beside one competing busy
 # process at nice 19. Prints one CSV row per run: the medians are taken by

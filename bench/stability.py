@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Where each method fails: stability and robustness maps (issue 13).
+"""Where each method fails: stability and robustness maps (results/stability.md).
 
 Runs build/refmap on coarse grids with --set overrides (one thread per run, --jobs runs at
 once) and classifies every run from its own exit code, stderr and diagnostics.csv:
@@ -269,7 +269,7 @@ def jobs_a(quick):
                                 sets=method_sets(s, c, x) + ["grid.nx=32", "grid.ny=32", "time.end=100",
                                                              "time.max_steps=400", "output.vtk=false",
                                                              f"solid.0.mu_s={mu:g}", f"solids.solid_cfl={p:g}"]))
-    # the semi-implicit solid stress (issue 14, docs/implicit.md) has no solid time-step limit:
+    # the semi-implicit solid stress (docs/implicit.md) has no solid time-step limit:
     # dt comes from advection and time.dt_max only, so P is imposed as dt_max = P dx /
     # sqrt(2 mu_s / rho_s) (where the advective limit binds first, p_effective records the P
     # actually used); k = 0.5 is the default, k = 0.1 is below the 1-D stability bound 1/4 and

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Analyse the runs of bench/run_studies.sh (issue #5, items 6 and 8).
+"""Analyse the runs of bench/run_studies.sh (results/performance.md, "Whole-run studies").
 
 Reads <raw>/cost/<scene>/<t>t/rep<k>/timings.csv, <raw>/many/<scene>/1t/rep<k>/timings.csv
 and <raw>/acc/<case>/<scheme>/<n>/ (timings.csv, probes, the last VTK frame), and writes

@@ -21,7 +21,7 @@ aggregate of every benchmark, and writes
   <out>/extrapolation_accuracy_vs_cost.png  error vs time per call, one marker per
                                     method x band (100^2 highlighted)
 benchmarks.md also gets the machine limits, each kernel's fraction of the measured
-bandwidth and peak, the solver study table (with the hypre reference quoted in issue #5)
+bandwidth and peak, the solver study table (with the hypre reference quoted in docs/references.md)
 and the PDE/LSQ extrapolation ratios (with the paper's figures). Every CSV starts with
 '#' header lines: CPU model (lscpu), cores, compiler, date, load.
 
@@ -320,7 +320,7 @@ def plots(rows, outdir, threads):
 
 
 # ---- machine limits, roofline, solver study, extrapolation sweep -------------------------
-HYPRE_REF_S = {1: 0.37, 1000: 0.64}  # hypre PFMG-CG, 1024^2, one core: quoted in issue #5
+HYPRE_REF_S = {1: 0.37, 1000: 0.64}  # hypre PFMG-CG, 1024^2, one core: quoted in docs/references.md
 PAPER_EXTRAP_MS = {"LSQ": 100.0, "PDE": 1550.0}  # Jain & Mani, 100^2, band 5 (paper)
 SOLVER_LABEL = {"V": "multigrid V(2,2)", "F": "multigrid F(2,2)", "cg": "CG (Jacobi)",
                 "mgpcg": "CG + V-cycle preconditioner"}
@@ -427,11 +427,11 @@ def extra_md(rows, threads):
             out.append("| " + " | ".join(cells) + " |")
         t1 = threads[0]
         out += ["", f"### 1024², one core: ours beside the hypre reference", "",
-                "The hypre PFMG-CG times are the figures quoted in the text of issue #5 "
+                "The hypre PFMG-CG times are the figures quoted in docs/references.md (Performance reference points) "
                 "(0.37 s for R = 1, 0.64 s for R = 1000, 1024², one core). They were **not "
                 "measured here**; their machine and stopping criterion are not known, so "
                 "the comparison is indicative only.", "",
-                "| R | hypre PFMG-CG (issue #5, not measured) | "
+                "| R | hypre PFMG-CG (quoted, not measured) | "
                 + " | ".join(SOLVER_LABEL[m] for m in ("V", "F", "mgpcg")) + " |",
                 "|---:|---:|---:|---:|---:|"]
         for ratio, ref in HYPRE_REF_S.items():

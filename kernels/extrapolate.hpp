@@ -3,7 +3,7 @@
 // make_extrapolator from the [solids] options; solver/extrapolation.hpp) and the shared types
 // of their kernels:
 //   extrapolate_lsq  (kernels/extrapolate_lsq.hpp) - Jain & Mani least-squares plane fits
-//                    (Algorithm 2 of the seed), the method of the paper;
+//                    (Algorithm 2 of the paper, docs/references.md), the method of the paper;
 //   extrapolate_pde  (kernels/extrapolate_pde.hpp) - Aslam (2004) linear PDE extrapolation,
 //                    the RMT baseline it is compared with.
 // Adding a method: a class deriving from Extrapolator in its own file and one line in

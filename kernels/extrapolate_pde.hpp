@@ -1,7 +1,7 @@
 #pragma once
 // Aslam (2004) PDE extrapolation, linear variant, per component of the reference map: the
 // RMT baseline (Valkov et al. 2015) that the least-squares method is compared with
-// (BENCHMARKS.md section 5).
+// (docs/references.md, "Methods cited in the code").
 //
 //   n = grad(phi)/|grad(phi)|   (central differences; one-sided at the domain edge)
 //   (1) q_n = n . grad(xi) at known cells: central differences where both stencil cells are

@@ -47,7 +47,7 @@ namespace refmap {
 inline constexpr std::size_t kMinParallelCells = 16384;
 /// The same when waiting threads sleep (OMP_WAIT_POLICY=passive, refmap's default since
 /// solver/main.cpp sets it): every region then wakes its partner (~10-20 us), so small
-/// grids (two_solids_tgv's 128^2) ran slower on 2 threads than on 1 (results/README.md,
+/// grids (two_solids_tgv's 128^2) ran slower on 2 threads than on 1 (results/threads.md,
 /// "Threads across solids"); 256^2 and larger grids keep their row threading.
 inline constexpr std::size_t kMinParallelCellsPassive = 65536;
 

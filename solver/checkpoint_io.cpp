@@ -15,7 +15,7 @@ namespace {
 
 constexpr char kMagic[8] = {'R', 'E', 'F', 'M', 'A', 'P', 'C', 'K'};
 // 2: the contact velocity scale (contact.U) and the rigid bodies' force records
-// (body<k>.region.*, body<k>.end.*) of issue 16; a version-1 file is refused by name
+// (body<k>.region.*, body<k>.end.*) of docs/bodies.md; a version-1 file is refused by name
 constexpr std::uint32_t kVersion = 2;
 constexpr std::size_t kHeader = 8 + 4 + 8 + 8;  // magic, version, payload size, checksum
 

@@ -147,7 +147,7 @@ struct SolidsOptions {
   /// floor(lsq_radius^2) enter it. Default 2 sqrt(2) (a 5 x 5 block), half the paper's
   /// 4 sqrt(2): with the paper's radius a stiff solid translating through an inviscid
   /// fluid gains energy without bound and impacts gain energy (docs/reference_map.md; the
-  /// numbers in results/README.md, "Least-squares fit radius"; why the wider fit feeds it is
+  /// numbers in results/methods.md, "Least-squares fit radius"; why the wider fit feeds it is
   /// not established). Both radii are exact for affine xi.
   double lsq_radius = 2.0 * 1.4142135623730951;
   double band = 6.0;        ///< w_E, width of the extrapolated band, in cells

@@ -16,7 +16,7 @@ namespace {
 /// over a step, so a relative residual tol leaves an error of about tol |d| per step,
 /// far below the O(dt) error of the time discretisation, while the pressure's tolerance
 /// sets the divergence of the projected field; the projection after this step removes
-/// any divergence d carries. Measured (results/README.md, "Semi-implicit stepping"): at
+/// any divergence d carries. Measured (results/implicit.md, "Semi-implicit stepping"): at
 /// 1e-5 the errors of couette_elastic and the shear wave are those of a 1e-10 solve to 4
 /// digits with a third to a quarter of the cycles. F-cycles saved no cycles (each dearer:
 /// 5.1 vs 5.3 per step on couette_elastic, 4.1 both on soft_disc_cavity at 1e-6), 1 + 1
@@ -73,7 +73,7 @@ void ImplicitVelocity::predict_changes(double dt) {
   // Initial guesses: the rate d / dt extrapolated linearly in time from the last two steps
   // (their midpoints), times this step's dt. Against the last step's d alone this takes
   // couette_elastic (64 cells per unit) from 8.5 to 5.3 cycles per step at implicit_tol
-  // 1e-6 (results/README.md, "Semi-implicit stepping"); a poor guess (a sudden change,
+  // 1e-6 (results/implicit.md, "Semi-implicit stepping"); a poor guess (a sudden change,
   // e.g. at an impact) only costs cycles, the tolerance is the same.
   if (steps_ >= 1) {
     const bool lin = steps_ >= 2;

@@ -319,7 +319,7 @@ int cmd_resume(const std::string& out, int threads, bool threads_given, bool qui
 /// policy spins: on a shared machine with another busy process a spinning thread keeps
 /// waiting for its descheduled partner at every barrier, and a 2-thread run took 5-30x
 /// the time of a 1-thread run; passive waiting costs a wake-up per region instead
-/// (measurements: results/README.md, "Threads across solids"; docs/performance.md).
+/// (measurements: results/threads.md, "Threads across solids"; docs/performance.md).
 /// libgomp reads the variable once, when it is loaded, before main: so set it and run the
 /// program again (execv of /proc/self/exe, same arguments); if that fails, go on as is.
 void default_wait_policy(char** argv) {

@@ -1,6 +1,6 @@
 #pragma once
-// The coarse levels of the multigrid with solver.coarse_operator = "galerkin" (issue 15,
-// item 3: a V-cycle count that does not grow with the density ratio).
+// The coarse levels of the multigrid with solver.coarse_operator = "galerkin" (results/multigrid.md,
+// "The Galerkin coarse operator": a V-cycle count that does not grow with the density ratio).
 //
 // The finest level keeps its matrix-free 5-point operator and red-black smoother
 // (kernels/multigrid.hpp). Below it, every level l >= 1 carries the Galerkin operator

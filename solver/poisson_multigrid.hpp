@@ -27,7 +27,7 @@
 // the fine strips the coarse face covers in parallel -- the flux-preserving rule for a
 // density jump, identical for constant beta. With the bilinear prolongation it is WORSE on
 // the standard ratio-1000 disc (V-cycles: 48 instead of 13 on 256^2, no convergence on
-// 512^2; results/poisson_contrast.csv, results/README.md "Multigrid and density
+// 512^2; results/poisson_contrast.csv, results/multigrid.md "Multigrid and density
 // contrast"); kept selectable for that comparison.
 // Prolongation: linear interpolation between cell centres in each direction (bilinear,
 // weights 9/16 3/16 3/16 1/16 on uniform levels), Neumann reflection (constant

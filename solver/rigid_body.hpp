@@ -1,5 +1,5 @@
 #pragma once
-// Rigid and driven bodies, and soft solids clamped to them (issue 16; docs/bodies.md).
+// Rigid and driven bodies, and soft solids clamped to them (docs/bodies.md).
 //
 // A [[solid]] with motion = "fixed", "prescribed" or "pinned" is a RIGID BODY. The fluid
 // sees it through the same blended fields as a soft solid (density and viscosity by eq.

@@ -217,7 +217,7 @@ class RunOutput {
   }
 
   /// frame_failed.vti: the state a health check refused, so that the failure can be looked
-  /// at (issue 13). Written whenever there is an output directory, also with output.vtk =
+  /// at (docs/stability.md). Written whenever there is an output directory, also with output.vtk =
   /// false (one file, at the end); its TIME is the failing step's. Not in the .pvd: the
   /// series holds only scheduled frames of healthy states, and a reader of the series must
   /// not take this one for one of them. Returns the path ("" without an output directory).

@@ -326,7 +326,7 @@ TEST(ContactWall, BounceUnderGravity) {
     EXPECT_LT(b->contact_gain, 0.0);   // no energy gain through the (first) contact
     // nor during the rebound: measured 0.45 % (soft) and 4.0 % (stiff) of the energy released
     // by the fall; with the paper's least-squares fit radius (solids.lsq_radius = 5.66) the
-    // rebound gained 22 % and 17 % of it (results/README.md, "Least-squares fit radius")
+    // rebound gained 22 % and 17 % of it (results/methods.md, "Least-squares fit radius")
     EXPECT_LT(b->max_rise, 0.08 * b->released);
   }
   // the softer solid deforms more
@@ -337,7 +337,7 @@ TEST(ContactWall, BounceUnderGravity) {
 // (rho_s = 10, g = 20: Stokes number ~180, the soft disc's impact speed 0.59 of its shear-wave
 // speed) on 96^2 instead of 128^2, to t = 0.45 (first contacts from t ~ 0.19, rebounds over by
 // t ~ 0.40). Measured 0.70 (soft) and 0.82 (stiff); 0.69 and 0.81 on the scenes' 128^2. In the
-// lighter setting of BounceUnderGravity the order is the opposite (0.56 vs 0.49; docs/contact.md, results/README.md "Restitution regime").
+// lighter setting of BounceUnderGravity the order is the opposite (0.56 vs 0.49; docs/contact.md, results/methods.md "Restitution regime").
 TEST(ContactWall, StifferSolidHasHigherRestitution) {
   const std::vector<std::string> sets{"grid.nx=96", "grid.ny=96"};
   const Bounce soft = run_bounce("bounce_soft.toml", sets, 0.45);

@@ -1,4 +1,4 @@
-// A full disk must leave diagnostics.csv ending on a whole row (issue: runs that
+// A full disk must leave diagnostics.csv ending on a whole row (README.md, exit status 3: runs that
 // survive). The file size limit (RLIMIT_FSIZE) stands in for a full disk: a write past it
 // fails with EFBIG exactly as one past the free space fails with ENOSPC.
 #include <gtest/gtest.h>

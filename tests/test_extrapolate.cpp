@@ -87,7 +87,7 @@ Fn zalesak_phi() {
 // linear (affine) test field, O(1) values with a non-zero constant
 const Fn lin_x = [](double x, double y) { return 0.3 + 1.7 * x - 0.4 * y; };
 const Fn lin_y = [](double x, double y) { return -0.2 + 0.5 * x + 1.1 * y; };
-// smooth nonlinear field of the brief
+// a smooth nonlinear field (the one bench/bench_extrapolate.cpp measures accuracy on)
 const Fn nl_x = [](double x, double y) { return x + 0.1 * std::sin(2 * kPi * y); };
 const Fn nl_y = [](double x, double y) { return y + 0.1 * x * x; };
 

@@ -86,7 +86,7 @@ void report(const char* what, const int* ns, const Errors* e, int m) {
 
 }  // namespace
 
-// The brief's test: band |phi| <= 6 dx, N = 64, 128, 256. (With a band of a fixed number
+// The convergence check: band |phi| <= 6 dx, N = 64, 128, 256. (With a band of a fixed number
 // of cells the march is a fixed number of steps, so the observed order is ~3.)
 TEST(FastMarching, PerturbedCircleConvergesSecondOrder) {
   const int ns[] = {64, 128, 256};

@@ -1,7 +1,7 @@
 // Implicit viscous step and semi-implicit solid stress (solver/implicit_step.hpp,
 // docs/implicit.md): an exact decaying shear mode at dt far above the explicit viscous
 // limit and its first order in time (backward Euler); the elastic Couette layer at the
-// advective dt; the finite-amplitude shear wave (BENCHMARKS.md 7a) beyond the explicit
+// advective dt; the finite-amplitude shear wave (docs/references.md#shear-wave-in-a-neo-hookean-solid) beyond the explicit
 // solid limit, and explicit and semi-implicit agreeing as dt shrinks.
 #include <gtest/gtest.h>
 

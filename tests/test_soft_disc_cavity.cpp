@@ -1,5 +1,5 @@
 // Soft disc in a lid-driven cavity (Zhao, Freund & Moser 2008; Sugiyama et al. 2011;
-// BENCHMARKS.md section 2): scenes/soft_disc_cavity.toml at a coarse grid. The centroid path
+// docs/references.md#soft-disc-in-a-lid-driven-cavity): scenes/soft_disc_cavity.toml at a coarse grid. The centroid path
 // (area-weighted over phi < 0, recorded after every step) is compared, without time stamps,
 // with the digitised path of Sugiyama et al. (2011, 1024^2; tests/data, see README there):
 // the distance from each of our centroids to the nearest point of the reference polyline
@@ -14,6 +14,7 @@
 
 #include "solver/scene.hpp"
 #include "solver/simulation.hpp"
+#include "tests/quoted_results.hpp"
 #include "tests/test_helpers.hpp"
 
 using namespace refmap;
@@ -94,6 +95,8 @@ TEST(SoftDiscCavity, CentroidFollowsSugiyamaPathAndAreaIsConserved) {
   // two published paths differ from each other by up to 0.042 (Kolahdouz to ours: 0.037).
   EXPECT_LT(max_d_sug, 0.025);
   EXPECT_LT(back_sug, 0.025);
+  expect_quoted("SoftDiscCavity/max_distance_to_sugiyama", max_d_sug);  // as results/README.md quotes
+  expect_quoted("SoftDiscCavity/max_distance_from_sugiyama", back_sug);
   // the disc must make the loop, not stay near the start of the path: measured min x
   // 0.289, max y 0.872 (Sugiyama: 0.289, 0.868), path length 2.12 (Sugiyama polyline: 2.02)
   EXPECT_LT(min_x, 0.33);

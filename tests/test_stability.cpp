@@ -1,4 +1,4 @@
-// Where methods fail (issue 13; bench/stability.py maps the limits, results/README.md
+// Where methods fail (bench/stability.py maps the limits, results/stability.md
 // "Where methods fail"):
 //  - FoldedMap: the health check that names a folded reference map (solver/health.cpp):
 //    one cell of a disc's xi is folded by hand (det grad xi < 0 by the central differences
@@ -442,7 +442,7 @@ TEST(StabilityLimits, SolidPairFarPastLimitFails) {
 
 // time.solid_implicit_cfl: the implicit solid stress's own cap P on dt <= P dx sqrt(rho_s /
 // G) (none by default). With the reach the disc in disc_tgv stays bounded to P ~ 8
-// (results/README.md, "The reach"); the cap at 8 makes that a rule: at mu_s = 1e5 the
+// (results/implicit.md, "The reach"); the cap at 8 makes that a rule: at mu_s = 1e5 the
 // first step is the capped one, 5.6e-4, not the vortex's advective 0.050 (89x larger).
 TEST(StabilityLimits, ImplicitSolidCflCapsTheStep) {
   const double mu = 1e5, dx = 1.0 / 32;

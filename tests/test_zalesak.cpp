@@ -2,8 +2,8 @@
 // on 100 x 100 with extrapolation into a 5 dx band every step. The exact final field is
 // the initial one (xi = x), so E = RMS over the disk's cells of (xi_final - x) measures
 // extrapolation + advection error. Jain & Mani report 6.72e-9 / 7.34e-9 for least
-// squares and 8.32e-4 / 4.67e-4 for the PDE approach (norm not stated); the issue asks
-// for <= 1e-8 with least squares. The PDE baseline's error is printed beside it and
+// squares and 8.32e-4 / 4.67e-4 for the PDE approach (norm not stated); the goal is
+// <= 1e-8 with least squares. The PDE baseline's error is printed beside it and
 // asserted to be worse than least squares (the paper's finding).
 #include <gtest/gtest.h>
 
@@ -13,6 +13,7 @@
 #include "solver/run.hpp"
 #include "solver/scene.hpp"
 #include "solver/simulation.hpp"
+#include "tests/quoted_results.hpp"
 #include "tests/test_helpers.hpp"
 
 using namespace refmap;
@@ -60,6 +61,10 @@ TEST(Zalesak, LeastSquaresErrorBelow1e8AndBetterThanPde) {
   std::printf("[zalesak] paper (Table 2): LSQ 6.72e-9 / 7.34e-9, PDE 8.32e-4 / 4.67e-4\n");
   EXPECT_GT(pde.ex, lsq.ex);
   EXPECT_GT(pde.ey, lsq.ey);
+  // results/README.md quotes the PDE errors (truncation level); the least-squares ones sit at
+  // round-off, which differs with the machine's floating point, so the page gives their bound
+  expect_quoted("Zalesak.Pde/ex", pde.ex);
+  expect_quoted("Zalesak.Pde/ey", pde.ey);
 }
 
 // The paper's central fluxes for xi: the rotation is affine, so they are exact too and the
