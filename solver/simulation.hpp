@@ -1,6 +1,7 @@
 #pragma once
 // One time step over the state: Algorithm 1 of Jain & Mani (fluid steps 4-9 here; solids
 // add steps 1-3). The run loop, output and diagnostics are in solver/run.hpp.
+#include <functional>
 #include <memory>
 #include <utility>
 #include <string>
@@ -102,6 +103,16 @@ class Simulation {
   /// Fill ghost cells of the cell velocity from the boundary conditions at time t.
   void apply_velocity_bc(Field& u, Field& v, double t) const;
 
+  /// Inside step(), for probes that need the split step's intermediate velocities (the
+  /// energy budget of bench/energy_budget.cpp, docs/implicit.md); none by default.
+  enum class Stage {
+    Advected,  ///< after step 4: u(), v() hold u*, rho() rho^{n+1}, the solids xi^{n+1}
+    Stressed   ///< after eq. (5.2): u(), v() hold u**, solid_stress_*() the stress used
+  };
+  void set_stage_probe(std::function<void(Stage, double dt)> probe) { probe_ = std::move(probe); }
+  /// The blended mixture viscosity of the current configuration (eq. 3.6).
+  const Field& viscosity() const { return mu_; }
+
  private:
   void initialise();
   /// step() without the tracers and markers (which step() moves around it).
@@ -190,6 +201,7 @@ class Simulation {
   std::unique_ptr<Markers> markers_;
   Field tu_, tv_;                          // end-of-step velocity with ghosts, for the tracers
   std::vector<std::unique_ptr<Actuation>> actuation_;  ///< per solid (null: not actuated)
+  std::function<void(Stage, double)> probe_;            ///< set_stage_probe (empty: none)
 };
 
 }  // namespace refmap
