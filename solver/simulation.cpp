@@ -444,7 +444,9 @@ double Simulation::step_state(double dt) {
     move_solids(dt);                     // steps 1-3
   }
   advect_momentum(dt);                   // step 4
+  if (probe_) probe_(Stage::Advected, dt);
   apply_viscous_and_solid_stress(dt);
+  if (probe_) probe_(Stage::Stressed, dt);
   if (!solids_.empty()) setup_poisson();
   if (contact_ && contact_->force_enabled()) compute_contact_force();
   face_accelerations();                  // step 5's G_f, eq. (5.3)

@@ -1,6 +1,7 @@
 #pragma once
 // One time step over the state: Algorithm 1 of Jain & Mani (fluid steps 4-9 here; solids
 // add steps 1-3). The run loop, output and diagnostics are in solver/run.hpp.
+#include <functional>
 #include <memory>
 #include <utility>
 #include <string>
@@ -46,7 +47,6 @@ class Simulation {
   const Field& v() const { return v_; }
   const Field& p() const { return p_; }
   const Field& rho() const { return rho_; }
-  const Field& mu() const { return mu_; }  ///< the blended viscosity, eq. (3.6)
   const Field& uf() const { return uf_; }  ///< x-face normal velocity, (nx+1) x ny
   const Field& vf() const { return vf_; }  ///< y-face normal velocity, nx x (ny+1)
   Field& u_mut() { ke_step_ = -1; return u_; }
@@ -121,6 +121,16 @@ class Simulation {
 
   /// Fill ghost cells of the cell velocity from the boundary conditions at time t.
   void apply_velocity_bc(Field& u, Field& v, double t) const;
+
+  /// Inside step(), for probes that need the split step's intermediate velocities (the
+  /// energy budget of bench/energy_budget.cpp, docs/implicit.md); none by default.
+  enum class Stage {
+    Advected,  ///< after step 4: u(), v() hold u*, rho() rho^{n+1}, the solids xi^{n+1}
+    Stressed   ///< after eq. (5.2): u(), v() hold u**, solid_stress_*() the stress used
+  };
+  void set_stage_probe(std::function<void(Stage, double dt)> probe) { probe_ = std::move(probe); }
+  /// The blended mixture viscosity of the current configuration (eq. 3.6).
+  const Field& viscosity() const { return mu_; }
 
  private:
   void initialise();
@@ -218,6 +228,7 @@ class Simulation {
   PhaseTimers timers_;
   std::vector<std::unique_ptr<Component>> components_;
   StateRegistry state_;
+  std::function<void(Stage, double)> probe_;  ///< set_stage_probe (empty: none)
 };
 
 }  // namespace refmap

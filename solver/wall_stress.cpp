@@ -6,7 +6,7 @@ namespace refmap {
 
 void WallStress::values(const Simulation& sim, std::vector<double>& out) const {
   const Grid& g = sim.grid();
-  const Field &u = sim.u(), &mu = sim.mu();
+  const Field &u = sim.u(), &mu = sim.viscosity();
   // the cell velocity's ghosts hold the walls' condition at the current time (the step
   // ends with apply_velocity_bc)
   double b = 0.0, t = 0.0;
