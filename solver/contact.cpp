@@ -111,8 +111,12 @@ void Contact::fill_layer(const Solid& a, Dist&& dist, const std::array<int, 4>& 
   // Only the cells of the box are visited: the part of a's window where the obstacle's
   // pressure can be non-zero (plus the cells whose left/bottom face touches it), so the
   // work follows the contact zone.
-  const int gj_lo = std::max(a.j0() - 1, box[2]), gj_hi = std::min(a.j0() + a.nj(), box[3]);
-  const int gi_lo = std::max(a.i0() - 1, box[0]), gi_hi = std::min(a.i0() + a.ni(), box[1]);
+  int gj_lo = std::max(a.j0() - 1, box[2]), gj_hi = std::min(a.j0() + a.nj(), box[3]);
+  int gi_lo = std::max(a.i0() - 1, box[0]), gi_hi = std::min(a.i0() + a.ni(), box[1]);
+  // a window across a periodic side (unwrapped indices, solver/periodic_window.hpp): the
+  // box (the whole period there) is visited, phi_at finds the window's cells
+  if (sides_.periodic_x() && (a.i0() < 0 || a.i0() + a.ni() > nx)) { gi_lo = box[0]; gi_hi = box[1]; }
+  if (sides_.periodic_y() && (a.j0() < 0 || a.j0() + a.nj() > ny)) { gj_lo = box[2]; gj_hi = box[3]; }
   for (int gj = gj_lo; gj <= gj_hi; ++gj)
     for (int gi = gi_lo; gi <= gi_hi; ++gi) {
       if (gi < 0 || gi >= nx || gj < 0 || gj >= ny) continue;
@@ -326,16 +330,30 @@ bool Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field
 }
 
 double Contact::pair_gap(const Solid& a, const Solid& b) const {
-  const int i0 = std::max(a.i0(), b.i0()), i1 = std::min(a.i0() + a.ni(), b.i0() + b.ni());
-  const int j0 = std::max(a.j0(), b.j0()), j1 = std::min(a.j0() + a.nj(), b.j0() + b.nj());
+  // the overlap of a's window with each image of b's by whole periods in a periodic
+  // direction (windows are unwrapped and at most one period wide: solver/periodic_window.hpp);
+  // only k = 0 unless one of them crosses a periodic side
+  auto images = [](int a0, int an, int b0, int bn, int n, bool periodic) {
+    auto floor_div = [](int p, int q) { return p / q - ((p % q != 0) && ((p < 0) != (q < 0))); };
+    if (!periodic) return std::array<int, 2>{0, 0};
+    return std::array<int, 2>{floor_div(a0 - b0 - bn, n) + 1, floor_div(a0 + an - b0 - 1, n)};
+  };
+  const auto kx = images(a.i0(), a.ni(), b.i0(), b.ni(), g_.nx, sides_.periodic_x());
+  const auto ky = images(a.j0(), a.nj(), b.j0(), b.nj(), g_.ny, sides_.periodic_y());
   double gap = sentinel_;
   bool any = false;
-  for (int gj = j0; gj < j1; ++gj)
-    for (int gi = i0; gi < i1; ++gi) {
-      const double pa = a.phi()(gi - a.i0(), gj - a.j0()), pb = b.phi()(gi - b.i0(), gj - b.j0());
-      if (!(pa < a.band() && pb < b.band())) continue;
-      gap = any ? std::min(gap, pa + pb) : pa + pb;
-      any = true;
+  for (int sy = ky[0]; sy <= ky[1]; ++sy)
+    for (int sx = kx[0]; sx <= kx[1]; ++sx) {
+      const int bi0 = b.i0() + sx * g_.nx, bj0 = b.j0() + sy * g_.ny;
+      const int i0 = std::max(a.i0(), bi0), i1 = std::min(a.i0() + a.ni(), bi0 + b.ni());
+      const int j0 = std::max(a.j0(), bj0), j1 = std::min(a.j0() + a.nj(), bj0 + b.nj());
+      for (int gj = j0; gj < j1; ++gj)
+        for (int gi = i0; gi < i1; ++gi) {
+          const double pa = a.phi()(gi - a.i0(), gj - a.j0()), pb = b.phi()(gi - bi0, gj - bj0);
+          if (!(pa < a.band() && pb < b.band())) continue;
+          gap = any ? std::min(gap, pa + pb) : pa + pb;
+          any = true;
+        }
     }
   return any ? gap : sentinel_;
 }
@@ -427,6 +445,9 @@ void Contact::observe(double t, const std::vector<std::unique_ptr<Solid>>& solid
       if (now != ps.in_contact) {
         // relative normal velocity along the line of centroids, > 0 when separating
         double ex = diag[b].cx - diag[a].cx, ey = diag[b].cy - diag[a].cy;
+        // the nearest images across periodic sides (the centroids are unwrapped)
+        if (sides_.periodic_x()) ex -= g_.lx() * std::round(ex / g_.lx());
+        if (sides_.periodic_y()) ey -= g_.ly() * std::round(ey / g_.ly());
         const double e = std::hypot(ex, ey);
         if (e > 0) { ex /= e; ey /= e; }
         const double vrel = (diag[b].u - diag[a].u) * ex + (diag[b].v - diag[a].v) * ey;

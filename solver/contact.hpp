@@ -61,10 +61,13 @@
 //
 // PERIODIC BOUNDARIES. Contact is computed on the global grid from the solids' windows.
 // A solid that spans a periodic direction has a wrapped window (its phi and normals are
-// periodic there), so contact with it across that boundary is handled. Any other solid is
-// kept by Solid::fit_window at least band + 3 cells from a periodic boundary (an error
-// otherwise), so two such solids are at least 2 (band + 3) > range cells apart across it:
-// contact.range must be < solids.band (checked when the scene is loaded).
+// periodic there), so contact with it across that boundary is handled. Any other solid's
+// window is in unwrapped index space and may cross a periodic side
+// (solver/periodic_window.hpp): phi_at finds a solid's phi at any image of a cell, a
+// window across a side is visited over the whole period, and pair_gap takes the overlap
+// with every image of the other window (the minimal-image displacement). Outside a
+// window phi = +band, so contact.range must be < solids.band (checked when the scene is
+// loaded).
 //
 // THREADS. The work is split into tasks -- one per pair of solids whose windows overlap, one
 // per solid and wall side within range -- that only read the solids: their face

@@ -128,7 +128,7 @@ std::string check_reference_maps(const Simulation& sim) {
         }
       }
     if (folded > 0) {
-      const int gi = s.i0() + wi, gj = s.j0() + wj;
+      const int gi = s.wrap().i(s.i0() + wi), gj = s.wrap().j(s.j0() + wj);  // the grid cell
       char buf[384];
       std::snprintf(buf, sizeof buf,
                     "reference map folded in solid '%s': det grad xi = %.3g <= 0 at cell (%d, %d), "

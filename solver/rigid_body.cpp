@@ -127,16 +127,17 @@ void RigidBodies::place(int k, const std::vector<std::unique_ptr<Solid>>& solids
 namespace {
 
 /// Bilinear interpolation of a cell-centred quantity q(i, j) at (x, y), the stencil clamped
-/// to the grid's cells (an image point beyond a wall takes the nearest row).
+/// to the grid's cells (an image point beyond a wall takes the nearest row); in a periodic
+/// direction the (unwrapped) indices are not clamped: q wraps them.
 template <class Q>
-double bilinear(const Grid& g, double x, double y, Q&& q) {
+double bilinear(const Grid& g, const PeriodicWrap& w, double x, double y, Q&& q) {
   const double fx = (x - g.x0) / g.dx - 0.5, fy = (y - g.y0) / g.dx - 0.5;
   int i = int(std::floor(fx)), j = int(std::floor(fy));
   double a = fx - i, b = fy - j;
-  if (i < 0) { i = 0; a = 0.0; }
-  if (i > g.nx - 2) { i = g.nx - 2; a = 1.0; }
-  if (j < 0) { j = 0; b = 0.0; }
-  if (j > g.ny - 2) { j = g.ny - 2; b = 1.0; }
+  if (!w.px && i < 0) { i = 0; a = 0.0; }
+  if (!w.px && i > g.nx - 2) { i = g.nx - 2; a = 1.0; }
+  if (!w.py && j < 0) { j = 0; b = 0.0; }
+  if (!w.py && j > g.ny - 2) { j = g.ny - 2; b = 1.0; }
   return (1 - a) * (1 - b) * q(i, j) + a * (1 - b) * q(i + 1, j) + (1 - a) * b * q(i, j + 1) + a * b * q(i + 1, j + 1);
 }
 
@@ -150,14 +151,20 @@ double RigidBodies::weight(int k, const Solid& s, int i, int j, double inv_dx) c
   return std::clamp(0.5 - phi * inv_dx, 0.0, 1.0);
 }
 
-void RigidBodies::force(const std::vector<std::unique_ptr<Solid>>& solids, Field& u, Field& v, const Field& rho,
-                        const Field& gxf, const Field& gyf, const Grid& g, double dt) {
+void RigidBodies::force(const std::vector<std::unique_ptr<Solid>>& solids, Field& u_grid, Field& v_grid,
+                        const Field& rho_grid, const Field& gxf, const Field& gyf, const Grid& g, double dt) {
   const double a = g.dx * g.dx, inv_dx = 1.0 / g.dx;
-  auto gcx = [&](int gi, int gj) { return 0.5 * (gxf(gi, gj) + gxf(gi + 1, gj)); };
-  auto gcy = [&](int gi, int gj) { return 0.5 * (gyf(gi, gj) + gyf(gi, gj + 1)); };
   for (std::size_t k = 0; k < specs_.size(); ++k) {
     if (!specs_[k].rigid()) continue;
     const Solid& s = *solids[k];
+    // window cells are unwrapped indices (solver/periodic_window.hpp): the global fields at
+    // their grid cell, the positions g.xc(gi), g.yc(gj) unwrapped like the pose
+    const PeriodicWrap& W = s.wrap();
+    auto u = [&](int gi, int gj) -> double& { return u_grid(W.i(gi), W.j(gj)); };
+    auto v = [&](int gi, int gj) -> double& { return v_grid(W.i(gi), W.j(gj)); };
+    auto rho = [&](int gi, int gj) { return rho_grid(W.i(gi), W.j(gj)); };
+    auto gcx = [&](int gi, int gj) { return 0.5 * (gxf(W.i(gi), W.j(gj)) + gxf(W.i(gi) + 1, W.j(gj))); };
+    auto gcy = [&](int gi, int gj) { return 0.5 * (gyf(W.i(gi), W.j(gj)) + gyf(W.i(gi), W.j(gj) + 1)); };
     RigidPose& p = pose_[k];
     const bool sharp = specs_[k].forcing == BodyForcing::Interpolated;
     // the cells of the body region (weight w > 0): chi = clamp(1/2 - phi/dx, 0, 1), the
@@ -261,8 +268,8 @@ void RigidBodies::force(const std::vector<std::unique_ptr<Solid>>& solids, Field
             ny /= nn;
             const auto ub = p.velocity(x - ph * nx, y - ph * ny);
             const double xi = x + h * nx, yi = y + h * ny, c = ph / (ph + h);
-            tu = ub[0] + c * (bilinear(g, xi, yi, q(0)) - ub[0]);
-            tv = ub[1] + c * (bilinear(g, xi, yi, q(1)) - ub[1]);
+            tu = ub[0] + c * (bilinear(g, W, xi, yi, q(0)) - ub[0]);
+            tv = ub[1] + c * (bilinear(g, W, xi, yi, q(1)) - ub[1]);
           }
           targets.push_back({gi, gj, tu + dt * gcx(gi, gj), tv + dt * gcy(gi, gj)});
         }

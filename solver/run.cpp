@@ -48,7 +48,7 @@ void solid_output_fields(const Simulation& sim, Field& phi, Field& xix, Field& x
   for (const auto& s : sim.solids()) {
     for (int j = 0; j < s->nj(); ++j)
       for (int i = 0; i < s->ni(); ++i) {
-        const int gi = s->i0() + i, gj = s->j0() + j;
+        const int gi = s->wrap().i(s->i0() + i), gj = s->wrap().j(s->j0() + j);
         const double ph = s->phi()(i, j);
         if (ph < phi(gi, gj)) {
           phi(gi, gj) = ph;

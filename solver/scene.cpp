@@ -1260,9 +1260,11 @@ void check_start_state(const Ctx& ctx, const Table& top, const Config& cfg) {
   }
   const Sides sides = face_sides(cfg.bc);
   const double x1 = g.x0 + g.lx(), y1 = g.y0 + g.ly();
-  // the band and the margin a solid's window keeps (solver/solid.cpp) must stay off a
-  // periodic side the solid does not span
-  const double reach = (cfg.solid_opt.band + 3.0) * g.dx;
+  // a solid that does not span a periodic direction may cross its sides (its window then
+  // does: solver/periodic_window.hpp) but its window -- the band and a margin of 3 cells
+  // either side, one more for the rounding to cells (solver/solid.cpp) -- must be
+  // narrower than the period
+  const double reach = (cfg.solid_opt.band + 4.0) * g.dx;
   std::vector<BoundingBox> boxes;
   std::vector<std::unique_ptr<Shape>> shapes;
   for (std::size_t k = 0; k < cfg.solids.size(); ++k) {
@@ -1275,7 +1277,7 @@ void check_start_state(const Ctx& ctx, const Table& top, const Config& cfg) {
     auto fail = [&](const std::string& what) {
       ctx.fail(key, solid_node(top, k, where), "solid '" + sp.name + "' " + what);
     };
-    // 3. inside the walls; 4. not across a periodic side it does not span
+    // 3. inside the walls; 4. spanning a periodic direction or narrower than its period
     struct Axis { double lo, hi, d0, d1; Side s0, s1; const char* name; };
     for (const Axis& a : {Axis{bb.xmin, bb.xmax, g.x0, x1, Left, Right, "x"},
                           Axis{bb.ymin, bb.ymax, g.y0, y1, Bottom, Top, "y"}}) {
@@ -1291,11 +1293,11 @@ void check_start_state(const Ctx& ctx, const Table& top, const Config& cfg) {
           break;
         case FaceKind::Periodic: {
           const bool spans = a.hi - a.lo >= a.d1 - a.d0;
-          if (!spans && (a.lo - reach < a.d0 || a.hi + reach > a.d1))
-            fail(std::string("crosses or touches the periodic sides in ") + a.name + ": with its band it spans " +
-                 a.name + " = [" + fmt_num(a.lo - reach) + ", " + fmt_num(a.hi + reach) + "], the domain [" +
-                 fmt_num(a.d0) + ", " + fmt_num(a.d1) + "] (a solid may cross a periodic side only if it spans "
-                 "the whole period; move it inward or enlarge the domain)");
+          if (!spans && a.hi - a.lo + 2.0 * reach > a.d1 - a.d0)
+            fail(std::string("is too wide for the periodic direction ") + a.name + ": with its band and margin it spans " +
+                 a.name + " = [" + fmt_num(a.lo - reach) + ", " + fmt_num(a.hi + reach) + "], more than the period [" +
+                 fmt_num(a.d0) + ", " + fmt_num(a.d1) + "] (a solid that does not span the whole period must leave "
+                 "2 (solids.band + 4) cells of it free; shrink it, narrow the band or enlarge the domain)");
           break;
         }
       }
@@ -1306,21 +1308,30 @@ void check_start_state(const Ctx& ctx, const Table& top, const Config& cfg) {
     for (std::size_t b = a + 1; b < shapes.size(); ++b) {
       // a clamped soft solid overlaps its rigid body on purpose
       if (cfg.solids[a].clamp_index == int(b) || cfg.solids[b].clamp_index == int(a)) continue;
-      const BoundingBox &A = boxes[a], &B = boxes[b];
-      const double xa = std::max(A.xmin, B.xmin), xb = std::min(A.xmax, B.xmax);
-      const double ya = std::max(A.ymin, B.ymin), yb = std::min(A.ymax, B.ymax);
-      if (xa > xb || ya > yb) continue;
-      const int i0 = std::max(0, int(std::floor((xa - g.x0) / g.dx))), i1 = std::min(g.nx - 1, int(std::ceil((xb - g.x0) / g.dx)));
-      const int j0 = std::max(0, int(std::floor((ya - g.y0) / g.dx))), j1 = std::min(g.ny - 1, int(std::ceil((yb - g.y0) / g.dx)));
-      for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i)
-          if (shapes[a]->phi0(g.xc(i), g.yc(j)) < 0.0 && shapes[b]->phi0(g.xc(i), g.yc(j)) < 0.0) {
-            const char* where = cfg.solids[b].shape.kind == ShapeKind::Tabulated ? "file" : "center";
-            ctx.fail("solid[" + std::to_string(b) + "]." + where, solid_node(top, b, where),
-                     "solid '" + cfg.solids[b].name + "' overlaps solid '" + cfg.solids[a].name + "' at the start (cell (" +
-                         std::to_string(i) + ", " + std::to_string(j) + "), x = " + fmt_num(g.xc(i)) + ", y = " +
-                         fmt_num(g.yc(j)) + ")");
-          }
+      // and every image of b by whole periods in a periodic direction (solids may cross its
+      // sides: the cells are then sampled at unwrapped positions, beyond [0, n))
+      const bool px = sides[Left] == FaceKind::Periodic, py = sides[Bottom] == FaceKind::Periodic;
+      for (int sy = py ? -1 : 0; sy <= (py ? 1 : 0); ++sy)
+        for (int sx = px ? -1 : 0; sx <= (px ? 1 : 0); ++sx) {
+          const double ox = sx * g.lx(), oy = sy * g.ly();
+          const BoundingBox &A = boxes[a], B{boxes[b].xmin + ox, boxes[b].ymin + oy, boxes[b].xmax + ox, boxes[b].ymax + oy};
+          const double xa = std::max(A.xmin, B.xmin), xb = std::min(A.xmax, B.xmax);
+          const double ya = std::max(A.ymin, B.ymin), yb = std::min(A.ymax, B.ymax);
+          if (xa > xb || ya > yb) continue;
+          int i0 = int(std::floor((xa - g.x0) / g.dx)), i1 = int(std::ceil((xb - g.x0) / g.dx));
+          int j0 = int(std::floor((ya - g.y0) / g.dx)), j1 = int(std::ceil((yb - g.y0) / g.dx));
+          if (!px) { i0 = std::max(0, i0); i1 = std::min(g.nx - 1, i1); }
+          if (!py) { j0 = std::max(0, j0); j1 = std::min(g.ny - 1, j1); }
+          for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i)
+              if (shapes[a]->phi0(g.xc(i), g.yc(j)) < 0.0 && shapes[b]->phi0(g.xc(i) - ox, g.yc(j) - oy) < 0.0) {
+                const char* where = cfg.solids[b].shape.kind == ShapeKind::Tabulated ? "file" : "center";
+                ctx.fail("solid[" + std::to_string(b) + "]." + where, solid_node(top, b, where),
+                         "solid '" + cfg.solids[b].name + "' overlaps solid '" + cfg.solids[a].name +
+                             "' at the start (cell (" + std::to_string(i) + ", " + std::to_string(j) + "), x = " +
+                             fmt_num(g.xc(i)) + ", y = " + fmt_num(g.yc(j)) + ")");
+              }
+        }
     }
 }
 

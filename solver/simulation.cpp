@@ -583,11 +583,14 @@ void Simulation::rate_coefficients(double dt) {
   for (Field* f : {&qxx_, &qxy_, &qyy_}) f->fill(0.0);
   for (const auto& s : solids_) {
     if (s->spec().mu_s <= 0.0) continue;
-    with_constitutive_model(s->spec(), [&](const auto& model) {
-      blend_rate_coefficients(model, s->stress_xx().cview(), s->stress_xy().cview(),
-                              s->stress_yy().cview(), s->phi().cview(), s->ni(), s->nj(),
-                              s->transition(), cfg_.solid_implicit_reach * cfg_.grid.dx, dt, qxx_.view(),
-                              qxy_.view(), qyy_.view(), s->i0(), s->j0());
+    // per piece of the window that does not cross a periodic side (solver/periodic_window.hpp)
+    s->for_each_piece([&](const WindowPiece& p) {
+      auto at = [&](const Field& f) { return shifted_view(f.cview(), p.li, p.lj); };
+      with_constitutive_model(s->spec(), [&](const auto& model) {
+        blend_rate_coefficients(model, at(s->stress_xx()), at(s->stress_xy()), at(s->stress_yy()), at(s->phi()),
+                                p.ni, p.nj, s->transition(), cfg_.solid_implicit_reach * cfg_.grid.dx, dt,
+                                qxx_.view(), qxy_.view(), qyy_.view(), p.gi, p.gj);
+      });
     });
   }
   for (Field* f : {&qxx_, &qxy_, &qyy_}) fill_scalar_ghosts(*f, cfg_.bc);

@@ -123,7 +123,7 @@ class Simulation {
   void apply_velocity_bc(Field& u, Field& v, double t) const;
 
   /// Inside step(), for probes that need the split step's intermediate velocities (the
-  /// energy budget of bench/energy_budget.cpp, docs/implicit.md); none by default.
+  /// energy budget of bench/energy_budget/energy_budget.cpp, docs/implicit.md); none by default.
   enum class Stage {
     Advected,  ///< after step 4: u(), v() hold u*, rho() rho^{n+1}, the solids xi^{n+1}
     Stressed   ///< after eq. (5.2): u(), v() hold u**, solid_stress_*() the stress used

@@ -35,25 +35,17 @@ void Solid::initialise() {
   const BoundingBox bb = shape_->bbox();
   wrap_x_ = sides_.periodic_x() && (bb.xmax - bb.xmin + 2.0 * band_ >= g.lx());
   wrap_y_ = sides_.periodic_y() && (bb.ymax - bb.ymin + 2.0 * band_ >= g.ly());
+  wrap_ = PeriodicWrap{g.nx, g.ny, sides_.periodic_x(), sides_.periodic_y()};
   // initial window: the reference bounding box plus band and margin, in cells
-  auto lo = [&](double x, double x0) { return int(std::floor((x - x0) / g.dx)) - kMarginNew; };
-  auto hi = [&](double x, double x0) { return int(std::ceil((x - x0) / g.dx)) + kMarginNew; };
-  int a = lo(bb.xmin - band_, g.x0), b = hi(bb.xmax + band_, g.x0);
-  int c = lo(bb.ymin - band_, g.y0), d = hi(bb.ymax + band_, g.y0);
-  if (wrap_x_) { a = 0; b = g.nx; }
-  if (wrap_y_) { c = 0; d = g.ny; }
-  a = std::max(a, 0); b = std::min(b, g.nx);
-  c = std::max(c, 0); d = std::min(d, g.ny);
+  auto lo = [&](double x, double x0) { return int(std::floor((x - x0) / g.dx)); };
+  auto hi = [&](double x, double x0) { return int(std::ceil((x - x0) / g.dx)); };
+  int a, b, c, d;
+  window_range(lo(bb.xmin - band_, g.x0), hi(bb.xmax + band_, g.x0), kMarginNew, g.nx, sides_.periodic_x(),
+               wrap_x_, "x", a, b);
+  window_range(lo(bb.ymin - band_, g.y0), hi(bb.ymax + band_, g.y0), kMarginNew, g.ny, sides_.periodic_y(),
+               wrap_y_, "y", c, d);
   if (b <= a || d <= c)
     throw std::invalid_argument("solid '" + spec_.name + "' lies outside the domain");
-  if (!wrap_x_ && sides_.periodic_x() && (bb.xmin - band_ < g.x0 || bb.xmax + band_ > g.x0 + g.lx()))
-    throw std::invalid_argument("solid '" + spec_.name +
-                                "' crosses a periodic boundary in x without spanning it "
-                                "(not supported)");
-  if (!wrap_y_ && sides_.periodic_y() && (bb.ymin - band_ < g.y0 || bb.ymax + band_ > g.y0 + g.ly()))
-    throw std::invalid_argument("solid '" + spec_.name +
-                                "' crosses a periodic boundary in y without spanning it "
-                                "(not supported)");
   i0_ = a; j0_ = c; ni_ = b - a; nj_ = d - c;
   for (Field* f : {&xi_x_, &xi_y_, &phi_, &sxx_, &sxy_, &syy_}) f->resize(ni_, nj_, Grid::ng);
   known_.resize(ni_, nj_, Grid::ng);
@@ -127,8 +119,13 @@ void Solid::advect(const Field& uf, const Field& vf, double dt) {
   fill_ghosts(xi_y_, 1);
   rk4_step(f, dt, [&](int stage, View kx, View ky) {
     if (stage > 1) extrapolate();  // stages 2-4: the band of this stage's xi
-    reference_map_rhs(xi_x_.view(), xi_y_.view(), phi_.view(), uf.view(), vf.view(), ni, nj, i0_,
-                      j0_, grid_.dx, kx, ky, flux);
+    // per piece of the window that does not cross a periodic side (the face velocities are
+    // read at the grid cells it covers; one piece, the whole window, unless it crosses one)
+    for_each_piece([&](const WindowPiece& p) {
+      auto at = [&](View v) { return shifted_view(v, p.li, p.lj); };
+      reference_map_rhs(at(xi_x_.view()), at(xi_y_.view()), at(phi_.view()), uf.view(), vf.view(), p.ni, p.nj,
+                        p.gi, p.gj, grid_.dx, at(kx), at(ky), flux);
+    });
   });
   fill_ghosts(xi_x_, 0);
   fill_ghosts(xi_y_, 1);
@@ -168,9 +165,37 @@ void Solid::rebuild_level_set() {
   fill_ghosts(phi_, 2);
 }
 
+void Solid::window_range(int a, int b, int m, int n, bool periodic, bool spans, const char* axis, int& lo,
+                         int& hi) const {
+  if (spans) {  // the full width, ghosts wrapped (fill_ghosts)
+    lo = 0;
+    hi = n;
+    return;
+  }
+  lo = a - m;
+  hi = b + m;
+  // inside the grid while the band keeps kMarginMin cells off its sides (always at a wall);
+  // across a periodic side the window extends past it in unwrapped indices
+  if (!periodic || (a - kMarginMin >= 0 && b + kMarginMin <= n)) {
+    lo = std::max(lo, 0);
+    hi = std::min(hi, n);
+    return;
+  }
+  // never wider than the period (two window cells would be one grid cell): the margin
+  // shrinks, down to kMarginMin
+  if (b - a + 2 * kMarginMin > n)
+    throw std::runtime_error("solid '" + spec_.name + "' is too wide for the periodic direction " + axis +
+                             ": its band covers " + std::to_string(b - a) + " of the " + std::to_string(n) +
+                             " cells of the period, which leaves less than " + std::to_string(kMarginMin) +
+                             " cells on either side (a solid may span a periodic direction only from the start)");
+  const int mm = std::min(m, (n - (b - a)) / 2);
+  lo = a - mm;
+  hi = b + mm;
+}
+
 void Solid::fit_window(bool force) {
   const Grid& g = grid_;
-  // extent of the band (phi < band) in global cells
+  // extent of the band (phi < band) in global cells (unwrapped)
   int a = 1 << 30, b = -(1 << 30), c = 1 << 30, d = -(1 << 30);
   for (int j = 0; j < nj_; ++j)
     for (int i = 0; i < ni_; ++i)
@@ -179,27 +204,18 @@ void Solid::fit_window(bool force) {
         c = std::min(c, j0_ + j); d = std::max(d, j0_ + j + 1);
       }
   if (b <= a) throw std::runtime_error("solid '" + spec_.name + "' has vanished (no cell with phi < band)");
-  auto inside = [&](int lo, int hi, int w0, int wn, int n) {
-    return (lo - kMarginMin >= w0 || w0 == 0) && (hi + kMarginMin <= w0 + wn || w0 + wn == n);
+  // the band keeps kMarginMin cells from the window's edges, except at a wall (a window
+  // there stays at the domain's edge); across a periodic side the window follows it
+  auto inside = [&](int lo, int hi, int w0, int wn, int n, bool periodic) {
+    return (lo - kMarginMin >= w0 || (!periodic && w0 == 0)) &&
+           (hi + kMarginMin <= w0 + wn || (!periodic && w0 + wn == n));
   };
-  bool ok_x = wrap_x_ || inside(a, b, i0_, ni_, g.nx);
-  bool ok_y = wrap_y_ || inside(c, d, j0_, nj_, g.ny);
-  // checked on every call, not only when re-windowing: a window already at the domain's
-  // edge never needs to move, and a solid carried across a periodic side would otherwise
-  // lose its band (and its area) there without a word
-  const bool cross_x = !wrap_x_ && sides_.periodic_x() && (a - kMarginMin < 0 || b + kMarginMin > g.nx);
-  const bool cross_y = !wrap_y_ && sides_.periodic_y() && (c - kMarginMin < 0 || d + kMarginMin > g.ny);
-  if (cross_x || cross_y) {
-    const bool lo = cross_x ? a - kMarginMin < 0 : c - kMarginMin < 0;
-    const char* side = cross_x ? (lo ? "left" : "right") : (lo ? "bottom" : "top");
-    throw std::runtime_error("solid '" + spec_.name + "' reached the periodic " + side +
-                             " side (its band is within " + std::to_string(kMarginMin) +
-                             " cells of it; solids may not cross a periodic side unless they span the periodic "
-                             "direction)");
-  }
+  bool ok_x = wrap_x_ || inside(a, b, i0_, ni_, g.nx, sides_.periodic_x());
+  bool ok_y = wrap_y_ || inside(c, d, j0_, nj_, g.ny, sides_.periodic_y());
   if (!force && ok_x && ok_y) return;
-  int na = wrap_x_ ? 0 : std::max(0, a - kMarginNew), nb = wrap_x_ ? g.nx : std::min(g.nx, b + kMarginNew);
-  int nc = wrap_y_ ? 0 : std::max(0, c - kMarginNew), nd = wrap_y_ ? g.ny : std::min(g.ny, d + kMarginNew);
+  int na, nb, nc, nd;
+  window_range(a, b, kMarginNew, g.nx, sides_.periodic_x(), wrap_x_, "x", na, nb);
+  window_range(c, d, kMarginNew, g.ny, sides_.periodic_y(), wrap_y_, "y", nc, nd);
   const int nni = nb - na, nnj = nd - nc;
   Field nx_x(nni, nnj, Grid::ng), nx_y(nni, nnj, Grid::ng), nphi(nni, nnj, Grid::ng, band_);
   for (int j = 0; j < nnj; ++j)
@@ -228,12 +244,18 @@ void Solid::fit_window(bool force) {
 void Solid::add_blend(Field& out, double q_s, double q_f, double reach) const {
   const double dq = q_s - q_f;
   if (dq == 0.0) return;
-  parallel_rows(0, nj_, ni_, [&](int j) {
-    for (int i = 0; i < ni_; ++i) {
-      const double ph = phi_(i, j) - reach;
-      if (ph >= wt_) continue;
-      out(i0_ + i, j0_ + j) += (1.0 - smoothed_heaviside(ph, wt_)) * dq;
-    }
+  // per piece of the window that does not cross a periodic side (the whole window unless it
+  // crosses one): the grid cells of a row are contiguous, so the loop vectorises as it did
+  // before windows could cross (a wrapped index per cell would not, and the vector and
+  // scalar sin differ in the last bit)
+  for_each_piece([&](const WindowPiece& p) {
+    parallel_rows(0, p.nj, p.ni, [&](int j) {
+      for (int i = 0; i < p.ni; ++i) {
+        const double ph = phi_(p.li + i, p.lj + j) - reach;
+        if (ph >= wt_) continue;
+        out(p.gi + i, p.gj + j) += (1.0 - smoothed_heaviside(ph, wt_)) * dq;
+      }
+    });
   });
 }
 
@@ -257,17 +279,22 @@ void Solid::compute_model_stress(const Model& model) {
 template <class Model>
 double Solid::blend_model_stress(const Model& model, Field& sxx, Field& sxy, Field& syy, Field& fx,
                                  Field& fy) const {
-  // (blend_stress reads the window's interior only: the ghosts zeroed above do not matter)
-  const double energy = blend_stress(model, sxx_.view(), sxy_.view(), syy_.view(), phi_.view(),
-                                     ni_, nj_, grid_.dx, wt_, sxx.view(), sxy.view(), syy.view(),
-                                     i0_, j0_, light_ratio_);
-  if (opt_.stress_form == StressForm::Face) {
-    add_face_stress_force(model, xi_x_.view(), xi_y_.view(), phi_.view(), ni_, nj_, grid_.dx,
-                          wt_, opt_.conservative, fx.view(), fy.view(), i0_, j0_);
-  } else if (!opt_.conservative) {
-    blend_stress_divergence(sxx_.view(), sxy_.view(), syy_.view(), phi_.view(), ni_, nj_,
-                            grid_.dx, wt_, fx.view(), fy.view(), i0_, j0_);
-  }
+  // (blend_stress reads the window's interior only: the ghosts zeroed above do not matter).
+  // Per piece of the window that does not cross a periodic side (solver/periodic_window.hpp;
+  // the whole window unless it crosses one): the stencils read the window's own cells.
+  double energy = 0.0;
+  for_each_piece([&](const WindowPiece& p) {
+    auto at = [&](const Field& f) { return shifted_view(f.view(), p.li, p.lj); };
+    energy += blend_stress(model, at(sxx_), at(sxy_), at(syy_), at(phi_), p.ni, p.nj, grid_.dx, wt_, sxx.view(),
+                           sxy.view(), syy.view(), p.gi, p.gj, light_ratio_);
+    if (opt_.stress_form == StressForm::Face) {
+      add_face_stress_force(model, at(xi_x_), at(xi_y_), at(phi_), p.ni, p.nj, grid_.dx, wt_, opt_.conservative,
+                            fx.view(), fy.view(), p.gi, p.gj);
+    } else if (!opt_.conservative) {
+      blend_stress_divergence(at(sxx_), at(sxy_), at(syy_), at(phi_), p.ni, p.nj, grid_.dx, wt_, fx.view(),
+                              fy.view(), p.gi, p.gj);
+    }
+  });
   // Cell + conservative: the caller takes the divergence of the global blended tensor
   return energy;
 }
@@ -303,17 +330,20 @@ void Solid::impose_initial_velocity(Field& u, Field& v) const {
   const BoundingBox bb = shape_->bbox();
   const double cx = spec_.shape.kind == ShapeKind::Tabulated ? 0.5 * (bb.xmin + bb.xmax) : spec_.shape.cx;
   const double cy = spec_.shape.kind == ShapeKind::Tabulated ? 0.5 * (bb.ymin + bb.ymax) : spec_.shape.cy;
-  for (int j = 0; j < nj_; ++j)
-    for (int i = 0; i < ni_; ++i) {
-      const double ph = phi_(i, j);
-      if (ph >= wt_) continue;
-      const double s = 1.0 - smoothed_heaviside(ph, wt_);
-      const int gi = i0_ + i, gj = j0_ + j;
-      const double ur = spec_.u - spec_.omega * (grid_.yc(gj) - cy);
-      const double vr = spec_.v + spec_.omega * (grid_.xc(gi) - cx);
-      u(gi, gj) = (1.0 - s) * u(gi, gj) + s * ur;
-      v(gi, gj) = (1.0 - s) * v(gi, gj) + s * vr;
-    }
+  // per piece of the window that does not cross a periodic side, positions unwrapped
+  for_each_piece([&](const WindowPiece& p) {
+    for (int j = 0; j < p.nj; ++j)
+      for (int i = 0; i < p.ni; ++i) {
+        const double ph = phi_(p.li + i, p.lj + j);
+        if (ph >= wt_) continue;
+        const double s = 1.0 - smoothed_heaviside(ph, wt_);
+        const int gi = p.gi + i, gj = p.gj + j;
+        const double ur = spec_.u - spec_.omega * (grid_.yc(j0_ + p.lj + j) - cy);
+        const double vr = spec_.v + spec_.omega * (grid_.xc(i0_ + p.li + i) - cx);
+        u(gi, gj) = (1.0 - s) * u(gi, gj) + s * ur;
+        v(gi, gj) = (1.0 - s) * v(gi, gj) + s * vr;
+      }
+  });
 }
 
 SolidDiagnostics Solid::diagnostics(const Field& u, const Field& v) const {
@@ -325,10 +355,12 @@ SolidDiagnostics Solid::diagnostics(const Field& u, const Field& v) const {
       const double ph = phi_(i, j);
       const double f = std::clamp(0.5 - ph / dx, 0.0, 1.0);  // sub-cell fraction of phi < 0
       if (f <= 0.0) continue;
-      const int gi = i0_ + i, gj = j0_ + j;
+      // the centroid from the unwrapped positions (continuous across a periodic side), the
+      // velocity from the grid cell
+      const int gi = wrap_.i(i0_ + i), gj = wrap_.j(j0_ + j);
       w += f;
-      wx += f * grid_.xc(gi);
-      wy += f * grid_.yc(gj);
+      wx += f * grid_.xc(i0_ + i);
+      wy += f * grid_.yc(j0_ + j);
       wu += f * u(gi, gj);
       wv += f * v(gi, gj);
       if (ph < 0.0) smax = std::max(smax, std::abs(0.5 * (sxx_(i, j) + syy_(i, j))));

@@ -8,7 +8,9 @@
 //
 // A solid that spans a periodic direction completely (the elastic layer of the Couette
 // test) gets a window of the full width in that direction, with ghost cells wrapped and
-// the reference map shifted by the period: xi_x(x + L) = xi_x(x) + L.
+// the reference map shifted by the period: xi_x(x + L) = xi_x(x) + L. Any other solid may
+// cross a periodic side: its window is in unwrapped index space and only the global
+// fields are read and written modulo the period (solver/periodic_window.hpp).
 #include <memory>
 #include <string>
 
@@ -18,6 +20,7 @@
 #include "solver/config.hpp"
 #include "core/field.hpp"
 #include "core/grid.hpp"
+#include "solver/periodic_window.hpp"
 #include "solver/shape.hpp"
 
 namespace refmap {
@@ -42,8 +45,8 @@ struct SolidDiagnostics {
 
 class Solid {
  public:
-  /// sides: which directions are periodic (a solid may only cross a periodic boundary by
-  /// spanning that direction).
+  /// sides: which directions are periodic (a solid spanning one gets a wrapped window of
+  /// the full width; any other may cross its sides: solver/periodic_window.hpp).
   /// rho_f: the fluid's density (solids.stress_blend = "specific" weighs the stress by it).
   Solid(const SolidSpec& spec, const SolidsOptions& opt, const Grid& g, Sides sides, double rho_f = 1.0);
 
@@ -113,6 +116,9 @@ class Solid {
   double wave_modulus() const;
 
   // --- window and fields (window-local, (i, j) <-> global (i0 + i, j0 + j)) ----------
+  // i0 + i is UNWRAPPED in a periodic direction (it may lie outside [0, nx)): positions are
+  // grid.xc(i0 + i); the global fields are indexed at (wrap().i(i0 + i), wrap().j(j0 + j))
+  // or, for a kernel, per piece (for_each_piece; solver/periodic_window.hpp).
   int i0() const { return i0_; }
   int j0() const { return j0_; }
   int ni() const { return ni_; }
@@ -125,9 +131,19 @@ class Solid {
   const Field& stress_yy() const { return syy_; }
   Field& xi_x_mut() { return xi_x_; }
   Field& xi_y_mut() { return xi_y_; }
-  /// phi at a global cell: the window's value, +band outside the window.
+  const PeriodicWrap& wrap() const { return wrap_; }
+  /// f(WindowPiece) for each part of the window that does not cross a periodic side (the
+  /// whole window, once, unless it crosses one).
+  template <class F>
+  void for_each_piece(F&& f) const {
+    refmap::for_each_piece(wrap_, i0_, j0_, ni_, nj_, f);
+  }
+  /// phi at a global cell (any image of it in a periodic direction): the window's value,
+  /// +band outside the window.
   double phi_global(int i, int j) const {
-    const int li = i - i0_, lj = j - j0_;
+    int li = i - i0_, lj = j - j0_;
+    if (wrap_.px) li = PeriodicWrap::mod(li, wrap_.nx);  // the window is at most nx wide
+    if (wrap_.py) lj = PeriodicWrap::mod(lj, wrap_.ny);
     if (li < 0 || li >= ni_ || lj < 0 || lj >= nj_) return band_;
     return phi_(li, lj);
   }
@@ -148,6 +164,11 @@ class Solid {
   void initialise();
   /// Chooses the window for the current band (plus margin) and copies the overlap.
   void fit_window(bool force);
+  /// The window [lo, hi) of one direction for a band over cells [a, b) (n cells, periodic
+  /// or not, spanned or not): the band plus the margin m, inside the grid unless the band
+  /// reaches a periodic side, never wider than the period.
+  void window_range(int a, int b, int m, int n, bool periodic, bool spans, const char* axis, int& lo,
+                    int& hi) const;
   /// Window ghosts: wrapped (+ the period for the matching xi component: component 0 =
   /// xi_x, 1 = xi_y, 2 = neither) across a spanned periodic direction, else linear
   /// extrapolation.
@@ -165,6 +186,7 @@ class Solid {
   Grid grid_;
   Sides sides_;
   bool wrap_x_ = false, wrap_y_ = false;  ///< window spans a periodic direction
+  PeriodicWrap wrap_;  ///< global index of an unwrapped one (solver/periodic_window.hpp)
   std::unique_ptr<Shape> shape_;
   double band_, wt_;
   double light_ratio_ = 1.0;  ///< rho_f / rho_s of solids.stress_blend = "specific" (1: volume blend)

@@ -1,8 +1,8 @@
 // Problems of a scene that used to surface only after the output directory was made
 // (exit 1, or a run full of non-finite values) are load-time SceneErrors (exit 2) that
 // name the key and its line: non-finite initial-velocity expressions, solids outside
-// the walls, across a periodic side, overlapping at the start, a band wider than the
-// grid, a grid larger than the machine's memory.
+// the walls, too wide for a periodic direction, overlapping at the start (also across a
+// periodic side), a band wider than the grid, a grid larger than the machine's memory.
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -81,11 +81,25 @@ TEST(StartChecks, SolidOutsideTheWalls) {
 }
 
 TEST(StartChecks, SolidAcrossAPeriodicSide) {
-  const std::string msg = error_of(scene(kPeriodic, disc("edge", 0.05, 0.5, 0.1)));
+  // a disc across a periodic side loads (issue 27: its window wraps, solver/periodic_window.hpp)
+  EXPECT_EQ(error_of(scene(kPeriodic, disc("edge", 0.05, 0.5, 0.1))), "");
+  EXPECT_EQ(error_of(scene(kPeriodic, disc("corner", 0.0, 1.0, 0.1))), "");
+  // with walls on the other sides: across the periodic side yes, across a wall no
+  const std::string channel =
+      "left = \"periodic\"\nright = \"periodic\"\nbottom = \"no_slip\"\ntop = \"no_slip\"\n";
+  EXPECT_EQ(error_of(scene(channel, disc("edge", 0.02, 0.5, 0.1))), "");
+  const std::string msg = error_of(scene(channel, disc("low", 0.5, 0.05, 0.1)));
   EXPECT_NE(msg.find("solid[0].center"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("periodic sides in x"), std::string::npos) << msg;
-  // the same disc in the middle is fine
-  EXPECT_EQ(error_of(scene(kPeriodic, disc("mid", 0.5, 0.5, 0.1))), "");
+  EXPECT_NE(msg.find("does not fit inside the walls"), std::string::npos) << msg;
+  // narrower than the period but too wide for a window that does not span it: the band
+  // (6 cells) and the margin (3 + 1 cells) either side must fit in the 32 cells
+  const std::string wide = error_of(scene(kPeriodic, disc("wide", 0.5, 0.5, 0.3)));
+  EXPECT_NE(wide.find("solid[0].center"), std::string::npos) << wide;
+  EXPECT_NE(wide.find("too wide for the periodic direction x"), std::string::npos) << wide;
+  // two discs that overlap across the seam (their nearest images do) are refused
+  const std::string ov = error_of(scene(kPeriodic, disc("a", 0.05, 0.5, 0.1) + disc("b", 0.9, 0.5, 0.1)));
+  EXPECT_NE(ov.find("overlaps solid 'a'"), std::string::npos) << ov;
+  EXPECT_EQ(error_of(scene(kPeriodic, disc("a", 0.05, 0.5, 0.1) + disc("b", 0.8, 0.5, 0.1))), "");
 }
 
 TEST(StartChecks, OverlappingSolids) {
