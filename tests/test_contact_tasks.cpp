@@ -8,9 +8,13 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <random>
 #include <vector>
 
+#include <unistd.h>
+
+#include "solver/checkpoint_io.hpp"
 #include "solver/contact.hpp"
 #include "solver/scene.hpp"
 #include "solver/simulation.hpp"
@@ -166,4 +170,47 @@ TEST(ContactTasks, BroadPhaseChangesNoBitOnRandomDiscs) {
     EXPECT_EQ(with_force, 6);
     EXPECT_GE(max_touching, 4u);
   }
+}
+
+// The pairs in contact are kept as a list and saved in a checkpoint (contact.touching): a
+// tracker restored from one, while pairs are in contact, must go on exactly as the one that
+// was saved -- the same gaps, pairs and events (bits) at every later step.
+TEST(ContactTasks, TouchingPairsSurviveACheckpoint) {
+  const Config cfg = load_scene_string(
+      refmap::testing::box_scene(96, refmap::testing::kWalls,
+                                 "[contact]\nenabled = true\nvelocity_scale = 1.0\n" + random_discs(24, 2027), 0.01, 0.2),
+      "random_discs.toml");
+  Simulation sim(cfg);
+  Contact a(cfg, 1.0);
+  int n = 0;
+  for (; n < 12 && a.touching_pairs().empty(); ++n) {
+    a.observe(sim.time(), sim.solids(), sim.solid_diagnostics());
+    sim.step();
+  }
+  ASSERT_FALSE(a.touching_pairs().empty()) << "no pair in contact: the checkpoint would hold an empty list";
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("refmap_touching_" + std::to_string(::getpid()) + ".bin")).string();
+  CheckpointWriter w;
+  a.save_state(w);
+  w.save(path);
+  Contact b(cfg, 1.0);
+  CheckpointReader r(path);
+  b.load_state(r);
+  std::filesystem::remove(path);
+  EXPECT_EQ(b.touching_pairs(), a.touching_pairs());
+  for (int k = 0; k < 6; ++k) {
+    a.observe(sim.time(), sim.solids(), sim.solid_diagnostics());
+    b.observe(sim.time(), sim.solids(), sim.solid_diagnostics());
+    EXPECT_EQ(a.touching_pairs(), b.touching_pairs()) << "step " << k;
+    for (std::size_t i = 0; i < cfg.solids.size(); ++i) {
+      const double ga = a.gap_solid(int(i)), gb = b.gap_solid(int(i));
+      EXPECT_EQ(std::memcmp(&ga, &gb, sizeof ga), 0) << "step " << k << ", solid " << i;
+    }
+    sim.step();
+  }
+  ASSERT_EQ(a.events().size(), b.events().size());
+  for (std::size_t k = 0; k < a.events().size(); ++k)
+    EXPECT_TRUE(a.events()[k].event == b.events()[k].event && a.events()[k].solid == b.events()[k].solid &&
+                std::memcmp(&a.events()[k].value, &b.events()[k].value, sizeof(double)) == 0)
+        << "event " << k;
 }
