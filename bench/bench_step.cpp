@@ -194,8 +194,18 @@ void BM_IncrmtCircles42(benchmark::State& state) {
   state.counters["solids"] = 42;
 }
 
+// 1000 soft discs of 10 cells' radius on 1024^2, contact on (issue 27, item 4; the scene
+// of bench/run_scaling.sh): against WholeSolidStep/1024 (one disc), the cost of many solids
+void BM_Discs1000Step(benchmark::State& state) {
+  const int n = int(state.range(0));
+  Cached& c = cached(REFMAP_SOURCE_DIR "/bench/scenes/many_discs_1000.toml", "many_discs_1000", n, true);
+  time_steps(state, c, n);
+  state.counters["solids"] = 1000;
+}
+
 }  // namespace
 
+BENCHMARK(BM_Discs1000Step)->Name("Discs1000Step")->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_IncrmtCircles42)->Name("IncrmtCircles42")->Arg(128)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_WholeFluidStep)
     ->Name("WholeFluidStep")

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Summarise runs of scenes/cylinder_re20.toml (bench/run_cylinder.sh) into one CSV row each.
 
-For each run directory: the last row of diagnostics.csv gives the force on the cylinder
-(solid0_fx, solid0_fy per unit depth), hence c_D = 2 F_x / (rho U^2 D), c_L = 2 F_y / (rho U^2 D)
+For each run directory: the last row of diagnostics.csv and its rows of solids.csv give the
+force on the cylinder (solid0_fx, solid0_fy per unit depth), hence c_D = 2 F_x / (rho U^2 D), c_L = 2 F_y / (rho U^2 D)
 with rho = 1, U = 0.2 (the mean inflow), D = 0.1; probe_p_front_back.csv gives
 Delta p = p(0.15, 0.2) - p(0.25, 0.2); probe_u_wake.csv (u on y = 0.2 from the back of the
 cylinder, x = 0.25, to x = 0.45) the recirculation length L_a = x_r - 0.25, x_r the last zero
@@ -11,7 +11,11 @@ Schafer & Turek (1996), docs/references.md#cylinder-in-a-channel-at-re--20, are 
 Standard library only. Usage: cylinder_summary.py RUN_DIR... > results/cylinder_re20.csv
 """
 import csv
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scenes"))
+import solids_csv  # noqa: E402  (solids.csv pivoted to solid<k>_<quantity> columns)
 
 RHO, U_MEAN, D = 1.0, 0.2, 0.1
 X_BACK = 0.25
@@ -47,6 +51,7 @@ def summarise(run):
     k_dt = head.index("dt")
     dt_full = max(float(r[k_dt]) for r in rows)
     last = dict(zip(head, [r for r in rows if float(r[k_dt]) > 0.99 * dt_full][-1]))
+    last.update({k: v[0] for k, v in solids_csv.wide_columns(run, [last["step"]]).items()})
     q = 0.5 * RHO * U_MEAN**2 * D
     _, pp = read_csv(run + "/probe_p_front_back.csv")
     _, uw = read_csv(run + "/probe_u_wake.csv")

@@ -1,10 +1,14 @@
 #!/usr/bin/env python3
 """Figure of a Turek & Hron run (bench/run_fsi.sh): the tip displacement u_x, u_y of A against
-time, the tip trajectory (u_y against u_x), and the force on the cylinder (solid0_fx, _fy).
+time, the tip trajectory (u_y against u_x), and the force on the cylinder (solid0_fx, _fy of solids.csv).
 Usage (Debian's matplotlib): /usr/bin/python3 bench/fsi_plot.py RUN_DIR OUT.png [T_MAX]
 (T_MAX: leave out later rows, e.g. the last steps of a run that failed)"""
 import csv
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scenes"))
+import solids_csv  # noqa: E402  (solids.csv pivoted to solid<k>_<quantity> columns)
 
 import matplotlib
 
@@ -21,6 +25,7 @@ def read(path):
 def main():
     run, out = sys.argv[1], sys.argv[2]
     m, d = read(run + "/markers.csv"), read(run + "/diagnostics.csv")
+    d.update(solids_csv.wide_columns(run, d["step"]))
     t_max = float(sys.argv[3]) if len(sys.argv) > 3 else float("inf")
     for tab, key in ((m, "t"), (d, "time")):
         keep = [k for k, t in enumerate(tab[key]) if t <= t_max]

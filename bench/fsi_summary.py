@@ -22,7 +22,11 @@ Usage: fsi_summary.py RUN_DIR CASE RHO_S [WINDOW [SMOOTH [T_END]]] -> CSV rows o
 (quantity, ours, reference).
 """
 import csv
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scenes"))
+import solids_csv  # noqa: E402  (solids.csv pivoted to solid<k>_<quantity> columns)
 
 REF = {  # docs/references.md#turek-and-hron-fsi-benchmark: mean, amplitude, frequency
     "FSI2": {"ux": (-14.58e-3, 12.44e-3, 3.8), "uy": (1.23e-3, 80.6e-3, 2.0),
@@ -68,6 +72,7 @@ def main():
     smooth = float(sys.argv[5]) if len(sys.argv) > 5 else 0.0
     m = read(run + "/markers.csv")
     d = read(run + "/diagnostics.csv")
+    d.update(solids_csv.wide_columns(run, d["step"]))
     t_end = float(sys.argv[6]) if len(sys.argv) > 6 else d["time"][-1]
     t0 = t_end - window
     tm = [t for t in m["t"] if t0 <= t <= t_end]

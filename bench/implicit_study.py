@@ -1,5 +1,8 @@
 """Runs of bench/run_implicit_study.sh: explicit vs semi-implicit stepping (results/implicit.md)."""
-import argparse, csv, math, os, subprocess, time
+import argparse, csv, math, os, subprocess, sys, time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scenes"))
+import solids_csv  # noqa: E402  (solids.csv pivoted to solid<k>_<quantity> columns)
 
 SEMI = ["time.viscous=implicit", "time.solid_stress=semi_implicit"]
 UC = ["time.viscous=implicit", "time.solid_stress=upper_convected"]
@@ -10,9 +13,15 @@ def rows(path):
 
 
 def diag(d):
+    """diagnostics.csv of run d as one dict per row, with the per-solid values of solids.csv
+    (solid<k>_<q>) of that row's step."""
     r = rows(os.path.join(d, "diagnostics.csv"))
     h = r[0]
-    return [dict(zip(h, x)) for x in r[1:]]
+    out = [dict(zip(h, x)) for x in r[1:]]
+    wide = solids_csv.wide_columns(d, [x["step"] for x in out])
+    for k, row in enumerate(out):
+        row.update({c: v[k] for c, v in wide.items()})
+    return out
 
 
 def timing(d):

@@ -73,6 +73,9 @@ import time
 
 import numpy as np
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scenes"))
+import solids_csv  # noqa: E402  (solids.csv pivoted to solid<k>_<quantity> columns)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = os.path.join(ROOT, "scenes")
 A0 = 0.3141592653589793  # the scene's amplitude, U0 2 pi with U0 = 0.05
@@ -102,12 +105,14 @@ def run_one(job, binary, raw):
     job["rc"] = p.returncode
     job["stderr"] = p.stderr.strip()
     job["wall_s"] = time.time() - t0
-    job["diag"] = read_diag(os.path.join(out, "diagnostics.csv"))
+    job["diag"] = read_diag(out)
     job["failed_frame"] = os.path.exists(os.path.join(out, "frame_failed.vti"))
     return job
 
 
-def read_diag(path):
+def read_diag(run):
+    """diagnostics.csv of RUN as columns, with the per-solid ones of solids.csv (solid<k>_<q>)."""
+    path = os.path.join(run, "diagnostics.csv")
     if not os.path.exists(path):
         return {}
     with open(path) as f:
@@ -116,7 +121,9 @@ def read_diag(path):
         return {}
     head, data = rows[0], rows[1:]
     arr = np.array([[float(x) for x in r] for r in data if len(r) == len(head)])
-    return {h: arr[:, k] for k, h in enumerate(head)}
+    d = {h: arr[:, k] for k, h in enumerate(head)}
+    d.update({k: np.array(v) for k, v in solids_csv.wide_columns(run, d["step"]).items()})
+    return d
 
 
 def stretch_from_sigma(sig, mu):

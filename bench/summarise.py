@@ -46,7 +46,8 @@ import sys
 UNIT_TO_US = {"ns": 1e-3, "us": 1.0, "ms": 1e3, "s": 1e6}
 # benchmarks whose first argument is not a grid size
 NO_GRID = {"FastMarchingSolidWindow",  # argument: disc radius in cells
-           "MachineStreamCopy", "MachineStreamTriad", "MachineFmaPeak"}  # MiB per array
+           "MachineStreamCopy", "MachineStreamTriad", "MachineFmaPeak",  # MiB per array
+           "ContactPairs/cells", "ContactPairs/all"}  # number of solids' boxes
 PARAM_LABELS = {"AdvectionStage": {"0": "central", "1": "superbee"}}
 
 

@@ -40,6 +40,9 @@ import re
 import sys
 import xml.etree.ElementTree as ET
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import solids_csv  # noqa: E402  (solids.csv pivoted to solid<k>_<quantity> columns)
+
 try:
     import numpy as np
     import matplotlib
@@ -656,6 +659,8 @@ def main(argv=None):
     if series:
         domain = Frame(series[0][1]).extent
     d = read_table(diag_path) if os.path.exists(diag_path) else {}
+    if d and "step" in d:  # the per-solid series (solids.csv), one value per row of d
+        d.update({k: np.array(v) for k, v in solids_csv.wide_columns(run, d["step"]).items()})
     if not d:
         note("no diagnostics.csv (or it is empty): no time series")
     else:

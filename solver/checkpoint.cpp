@@ -117,7 +117,10 @@ void Contact::save_state(CheckpointWriter& w) const {
   w.put_f64s("contact.gap_solid", gap_solid_);
   w.put_f64s("contact.gap_wall", gap_wall_);
   put_pods(w, "contact.wall_state", wall_state_);
-  put_pods(w, "contact.pair_state", pair_state_);
+  // the pairs in contact, a and b interleaved (the N x N table of format 2 is gone)
+  std::vector<std::int64_t> touching;
+  for (const auto& [a, b] : touching_) { touching.push_back(a); touching.push_back(b); }
+  put_pods(w, "contact.touching", touching);
   w.put_f64s("contact.pair_totals", pair_totals_);
   w.put_f64("contact.energy", energy_);
   w.put_f64("contact.U", U_);
@@ -132,11 +135,22 @@ void Contact::save_state(CheckpointWriter& w) const {
 }
 
 void Contact::load_state(CheckpointReader& r) {
+  const std::int64_t nsolids = std::int64_t(wall_state_.size());  // the scene's, before loading
   gap_solid_ = r.get_f64s("contact.gap_solid");
   gap_wall_ = r.get_f64s("contact.gap_wall");
   observed_ = true;
   get_pods(r, "contact.wall_state", wall_state_);
-  get_pods(r, "contact.pair_state", pair_state_);
+  std::vector<std::int64_t> touching;
+  get_pods(r, "contact.touching", touching);
+  if (touching.size() % 2) throw CheckpointError("checkpoint " + r.path() + ": record 'contact.touching' has the wrong size");
+  touching_.clear();
+  for (std::size_t k = 0; k < touching.size(); k += 2) {
+    const std::int64_t a = touching[k], b = touching[k + 1];
+    // sorted pairs a < b of this scene's solids, as save_state wrote them
+    if (!(0 <= a && a < b && b < nsolids) || (!touching_.empty() && !(touching_.back() < std::pair<int, int>(int(a), int(b)))))
+      throw CheckpointError("checkpoint " + r.path() + ": record 'contact.touching' names impossible pairs");
+    touching_.emplace_back(int(a), int(b));
+  }
   pair_totals_ = r.get_f64s("contact.pair_totals");
   energy_ = r.get_f64("contact.energy");
   U_ = r.get_f64("contact.U");

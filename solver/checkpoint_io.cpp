@@ -16,7 +16,9 @@ namespace {
 constexpr char kMagic[8] = {'R', 'E', 'F', 'M', 'A', 'P', 'C', 'K'};
 // 2: the contact velocity scale (contact.U) and the rigid bodies' force records
 // (body<k>.region.*, body<k>.end.*) of docs/bodies.md; a version-1 file is refused by name
-constexpr std::uint32_t kVersion = 2;
+// 3: the contact pairs in contact as a list (contact.touching) instead of an N x N table
+// (contact.pair_state), and the byte and row counts of solids.csv (run.solids_*)
+constexpr std::uint32_t kVersion = 3;
 constexpr std::size_t kHeader = 8 + 4 + 8 + 8;  // magic, version, payload size, checksum
 
 std::uint64_t fnv1a64(const unsigned char* p, std::size_t n) {

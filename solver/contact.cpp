@@ -58,7 +58,7 @@ Contact::Contact(const Config& cfg, double velocity_scale) : g_(cfg.grid) {
   gap_solid_.assign(n, sentinel_);
   gap_wall_.assign(n, sentinel_);
   wall_state_.assign(n, {});
-  pair_state_.assign(n * n, {});
+  touching_.clear();
 }
 
 namespace {
@@ -93,6 +93,28 @@ double Contact::phi_at(const Solid& s, int gi, int gj) const {
   if (sides_.periodic_y()) gj = ((gj % g_.ny) + g_.ny) % g_.ny;
   if (gi < 0 || gi >= g_.nx || gj < 0 || gj >= g_.ny) return s.band();
   return s.phi_global(gi, gj);
+}
+
+void Contact::find_pairs(const std::vector<std::unique_ptr<Solid>>& solids, int margin,
+                         std::vector<std::pair<int, int>>& out) {
+  const int n = int(solids.size());
+  if (!broad_phase_) {  // every pair, as the loop before the broad phase (tests)
+    out.clear();
+    for (int a = 0; a < n; ++a)
+      for (int b = a + 1; b < n; ++b) out.emplace_back(a, b);
+    return;
+  }
+  window_boxes_.resize(std::size_t(n));
+  for (int k = 0; k < n; ++k) {
+    const Solid& s = *solids[std::size_t(k)];
+    CellBox& b = window_boxes_[std::size_t(k)];
+    b.lo[0] = s.i0() - margin; b.hi[0] = s.i0() + s.ni() + margin;
+    b.lo[1] = s.j0() - margin; b.hi[1] = s.j0() + s.nj() + margin;
+  }
+  CellDomain dom;
+  dom.n[0] = g_.nx; dom.n[1] = g_.ny;
+  dom.periodic[0] = sides_.periodic_x(); dom.periodic[1] = sides_.periodic_y();
+  finder_.find(window_boxes_, dom, out);
 }
 
 template <class Dist>
@@ -194,27 +216,30 @@ bool Contact::add_force(const std::vector<std::unique_ptr<Solid>>& solids, Field
     return box;
   };
   auto empty = [](const std::array<int, 4>& b) { return b[0] > b[1] || b[2] > b[3]; };
-  // the tasks, in the order their results are applied (pairs, then solids and walls)
+  // the tasks, in the order their results are applied (pairs, then solids and walls).
+  // Pairs whose windows, inflated by a cell, do not meet have no cell where a's ramp
+  // changes and b's pressure is non-zero on the same face (outside its window phi_b =
+  // band > d), so their layers would be empty: leaving them out changes no bit.
   tasks_.clear();
-  for (int ia = 0; ia < n; ++ia)
-    for (int ib = ia + 1; ib < n; ++ib) {
-      const Solid& a = *solids[std::size_t(ia)];
-      const Solid& b = *solids[std::size_t(ib)];
-      if (clamped_pair(a, ia, b, ib)) continue;  // held together on purpose
-      // Outside the other solid's window its phi is +band > d (range < band), so the
-      // pressure vanishes there: only the overlap of the two windows matters, extended by
-      // one cell up/right for the faces that touch it. Across a periodic direction the
-      // windows may wrap, so there the whole window is visited.
-      std::array<int, 4> box{std::max(a.i0(), b.i0()) - 1, std::min(a.i0() + a.ni(), b.i0() + b.ni()),
-                             std::max(a.j0(), b.j0()) - 1, std::min(a.j0() + a.nj(), b.j0() + b.nj())};
-      if (sides_.periodic_x()) { box[0] = -1; box[1] = nx; }
-      if (sides_.periodic_y()) { box[2] = -1; box[3] = ny; }
-      if (box[0] >= box[1] || box[2] >= box[3]) continue;  // windows apart: no contact possible
-      Task t{ia, ib, -1, {narrow(box, boxes_[std::size_t(ia)].in, boxes_[std::size_t(ib)].near),
-                          narrow(box, boxes_[std::size_t(ib)].in, boxes_[std::size_t(ia)].near)}};
-      if (empty(t.box[0]) && empty(t.box[1])) continue;  // no layer cell within range
-      tasks_.push_back(t);
-    }
+  find_pairs(solids, 1, pairs_);
+  for (const auto& [ia, ib] : pairs_) {
+    const Solid& a = *solids[std::size_t(ia)];
+    const Solid& b = *solids[std::size_t(ib)];
+    if (clamped_pair(a, ia, b, ib)) continue;  // held together on purpose
+    // Outside the other solid's window its phi is +band > d (range < band), so the
+    // pressure vanishes there: only the overlap of the two windows matters, extended by
+    // one cell up/right for the faces that touch it. Across a periodic direction the
+    // windows may wrap, so there the whole window is visited.
+    std::array<int, 4> box{std::max(a.i0(), b.i0()) - 1, std::min(a.i0() + a.ni(), b.i0() + b.ni()),
+                           std::max(a.j0(), b.j0()) - 1, std::min(a.j0() + a.nj(), b.j0() + b.nj())};
+    if (sides_.periodic_x()) { box[0] = -1; box[1] = nx; }
+    if (sides_.periodic_y()) { box[2] = -1; box[3] = ny; }
+    if (box[0] >= box[1] || box[2] >= box[3]) continue;  // windows apart: no contact possible
+    Task t{ia, ib, -1, {narrow(box, boxes_[std::size_t(ia)].in, boxes_[std::size_t(ib)].near),
+                        narrow(box, boxes_[std::size_t(ib)].in, boxes_[std::size_t(ia)].near)}};
+    if (empty(t.box[0]) && empty(t.box[1])) continue;  // no layer cell within range
+    tasks_.push_back(t);
+  }
   for (int ia = 0; ia < n; ++ia)
     for (int side = 0; side < 4; ++side) {
       if (!wall_[side]) continue;
@@ -412,51 +437,69 @@ void Contact::observe(double t, const std::vector<std::unique_ptr<Solid>>& solid
     gap_solid_[i] = sentinel_;
     gap_wall_[i] = sentinel_;
   }
-  // the gaps, per solid concurrently (pairs a < b and a's walls; read-only), then the
-  // contact states and events serially in solid order
-  pair_gap_.assign(n * n, sentinel_);
+  // the gaps, concurrently (one item per pair of solids whose windows overlap -- no other
+  // pair has a gap below the sentinel -- and one per solid for its walls; read-only), then
+  // the contact states and events serially in pair order
+  find_pairs(solids, 0, pairs_);
+  const size_t np = pairs_.size();
+  pair_gap_.assign(np, sentinel_);
   side_gap_.assign(n, {sentinel_, sentinel_, sentinel_, sentinel_});
   auto overlap = [](const Solid& a, const Solid& b) {
     const long wi = std::min(a.i0() + a.ni(), b.i0() + b.ni()) - std::max(a.i0(), b.i0());
     const long wj = std::min(a.j0() + a.nj(), b.j0() + b.nj()) - std::max(a.j0(), b.j0());
     return std::max(0L, wi) * std::max(0L, wj);
   };
+  const bool any_wall = wall_[0] || wall_[1] || wall_[2] || wall_[3];
   parallel_items(
-      int(n),
-      [&](int a) {
-        long c = 0;
-        for (size_t b = size_t(a) + 1; b < n; ++b) c += overlap(*solids[size_t(a)], *solids[b]);
-        if (wall_[0] || wall_[1] || wall_[2] || wall_[3])
-          c += long(solids[size_t(a)]->ni()) * solids[size_t(a)]->nj();
-        return c * kContactCellCost;
+      int(np + n),
+      [&](int k) {
+        if (size_t(k) < np)
+          return overlap(*solids[size_t(pairs_[size_t(k)].first)], *solids[size_t(pairs_[size_t(k)].second)]) *
+                 kContactCellCost;
+        const Solid& s = *solids[size_t(k) - np];
+        return any_wall ? long(s.ni()) * s.nj() * kContactCellCost : 1L;
       },
-      [&](int a) {
-        for (size_t b = size_t(a) + 1; b < n; ++b) pair_gap_[size_t(a) * n + b] = pair_gap(*solids[size_t(a)], *solids[b]);
-        side_gap_[size_t(a)] = wall_gaps(*solids[size_t(a)]);
+      [&](int k) {
+        if (size_t(k) < np) {
+          const auto [a, b] = pairs_[size_t(k)];
+          pair_gap_[size_t(k)] = pair_gap(*solids[size_t(a)], *solids[size_t(b)]);
+        } else {
+          side_gap_[size_t(k) - np] = wall_gaps(*solids[size_t(k) - np]);
+        }
       });
-  for (size_t a = 0; a < n; ++a)
-    for (size_t b = a + 1; b < n; ++b) {
-      if (clamped_pair(*solids[a], int(a), *solids[b], int(b))) continue;  // no gap, no events
-      const double gap = pair_gap_[a * n + b];
-      gap_solid_[a] = std::min(gap_solid_[a], gap);
-      gap_solid_[b] = std::min(gap_solid_[b], gap);
-      PairState& ps = pair_state_[a * n + b];
-      const bool now = ps.in_contact ? !(gap > d_off) : gap < d_on;
-      if (now != ps.in_contact) {
-        // relative normal velocity along the line of centroids, > 0 when separating
-        double ex = diag[b].cx - diag[a].cx, ey = diag[b].cy - diag[a].cy;
-        // the nearest images across periodic sides (the centroids are unwrapped)
-        if (sides_.periodic_x()) ex -= g_.lx() * std::round(ex / g_.lx());
-        if (sides_.periodic_y()) ey -= g_.ly() * std::round(ey / g_.ly());
-        const double e = std::hypot(ex, ey);
-        if (e > 0) { ex /= e; ey /= e; }
-        const double vrel = (diag[b].u - diag[a].u) * ex + (diag[b].v - diag[a].v) * ey;
-        const char* what = now ? "contact_start" : "contact_end";
-        emit(t, int(a), what, vrel, solids[b]->spec().name);
-        emit(t, int(b), what, vrel, solids[a]->spec().name);
-        ps.in_contact = now;
-      }
+  // every pair with a gap or in contact, in the order of the all-pairs loop: the two
+  // sorted lists merged (a pair in contact whose windows have parted has the sentinel gap)
+  next_touching_.clear();
+  size_t p = 0, q = 0;
+  while (p < np || q < touching_.size()) {
+    const bool from_p = p < np && (q >= touching_.size() || !(touching_[q] < pairs_[p]));
+    const bool from_q = q < touching_.size() && (p >= np || !(pairs_[p] < touching_[q]));
+    const auto [ia, ib] = from_p ? pairs_[p] : touching_[q];
+    const double gap = from_p ? pair_gap_[p] : sentinel_;
+    const bool was = from_q;
+    p += from_p;
+    q += from_q;
+    const size_t a = size_t(ia), b = size_t(ib);
+    if (clamped_pair(*solids[a], ia, *solids[b], ib)) continue;  // no gap, no events
+    gap_solid_[a] = std::min(gap_solid_[a], gap);
+    gap_solid_[b] = std::min(gap_solid_[b], gap);
+    const bool now = was ? !(gap > d_off) : gap < d_on;
+    if (now != was) {
+      // relative normal velocity along the line of centroids, > 0 when separating
+      double ex = diag[b].cx - diag[a].cx, ey = diag[b].cy - diag[a].cy;
+      // the nearest images across periodic sides (the centroids are unwrapped)
+      if (sides_.periodic_x()) ex -= g_.lx() * std::round(ex / g_.lx());
+      if (sides_.periodic_y()) ey -= g_.ly() * std::round(ey / g_.ly());
+      const double e = std::hypot(ex, ey);
+      if (e > 0) { ex /= e; ey /= e; }
+      const double vrel = (diag[b].u - diag[a].u) * ex + (diag[b].v - diag[a].v) * ey;
+      const char* what = now ? "contact_start" : "contact_end";
+      emit(t, int(a), what, vrel, solids[b]->spec().name);
+      emit(t, int(b), what, vrel, solids[a]->spec().name);
     }
+    if (now) next_touching_.emplace_back(ia, ib);
+  }
+  touching_.swap(next_touching_);
   for (size_t i = 0; i < n; ++i)
     for (int side = 0; side < 4; ++side) {
       if (!wall_[side]) continue;

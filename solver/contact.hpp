@@ -69,6 +69,12 @@
 // window phi = +band, so contact.range must be < solids.band (checked when the scene is
 // loaded).
 //
+// PAIRS. Only pairs of solids whose windows come within a cell of each other can exert a
+// force or have a gap; they are found by cell lists (solver/contact_pairs.hpp), in the order
+// of the all-pairs loop (a < b, by a then b), so the work per step is O(N) for N solids
+// of similar size and the forces keep the bits of that loop. The contact state is kept
+// only for the pairs in contact (a sorted list), not as an N x N table.
+//
 // THREADS. The work is split into tasks -- one per pair of solids whose windows overlap, one
 // per solid and wall side within range -- that only read the solids: their face
 // contributions and energy terms are computed concurrently (kernels/loop.hpp,
@@ -92,6 +98,7 @@
 
 #include "kernels/boundary_kind.hpp"
 #include "solver/config.hpp"
+#include "solver/contact_pairs.hpp"
 #include "core/field.hpp"
 #include "core/grid.hpp"
 #include "solver/solid.hpp"
@@ -162,6 +169,11 @@ class Contact {
   /// Visit only the cells that can contribute (default) or every cell of the overlapping
   /// windows as before the boxes were narrowed: the same bits either way (for tests).
   void set_narrow_boxes(bool on) { narrow_boxes_ = on; }
+  /// Find the pairs of solids by cell lists (default) or test every pair as before the
+  /// broad phase: the same bits either way (for tests).
+  void set_broad_phase(bool on) { broad_phase_ = on; }
+  /// The pairs of solids in contact (a < b, sorted), as events.csv last reported them.
+  const std::vector<std::pair<int, int>>& touching_pairs() const { return touching_; }
 
   /// The gap and event tracker's state for a checkpoint (solver/checkpoint.cpp).
   void save_state(CheckpointWriter& w) const;
@@ -173,7 +185,6 @@ class Contact {
     double vmin = 0.0, vmax = 0.0, v_before = 0.0;
     bool started = false;
   };
-  struct PairState { bool in_contact = false; };
   /// One unit of add_force's work (see THREADS): a pair (a, b) or a solid a and a wall side.
   struct Task {
     int a = 0, b = -1, side = -1;
@@ -201,6 +212,10 @@ class Contact {
   Grid g_;
   /// phi of s at a global cell, wrapped across periodic directions, +band outside.
   double phi_at(const Solid& s, int gi, int gj) const;
+  /// The pairs a < b of solids (not clamped together or not: the caller decides) whose
+  /// windows, each inflated by `margin` cells, share a cell; sorted by a, then b.
+  void find_pairs(const std::vector<std::unique_ptr<Solid>>& solids, int margin,
+                  std::vector<std::pair<int, int>>& out);
   std::array<bool, 4> wall_{};
   Sides sides_;
   bool force_ = false;
@@ -210,7 +225,7 @@ class Contact {
   std::vector<double> gap_solid_, gap_wall_;
   bool observed_ = false;  ///< gaps measured at least once (clear_of_contact)
   std::vector<std::array<WallState, 4>> wall_state_;
-  std::vector<PairState> pair_state_;  // i < j, index i * n + j
+  std::vector<std::pair<int, int>> touching_;  ///< pairs in contact (a < b), sorted
   std::vector<ContactEvent> events_;
   std::vector<double> pair_totals_;
   double energy_ = 0.0;
@@ -222,8 +237,12 @@ class Contact {
   struct Boxes { int in[4], near[4]; };
   std::vector<Boxes> boxes_;
   bool narrow_boxes_ = true;
+  bool broad_phase_ = true;
+  BoxPairFinder finder_;
+  std::vector<CellBox> window_boxes_;
+  std::vector<std::pair<int, int>> pairs_, next_touching_;
   std::vector<std::array<Layer, 2>> layers_;
-  std::vector<double> pair_gap_;                 ///< observe: i < j, index i * n + j
+  std::vector<double> pair_gap_;                 ///< observe: the gap of pairs_[k]
   std::vector<std::array<double, 4>> side_gap_;  ///< observe: per solid and side
 };
 

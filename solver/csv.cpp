@@ -81,7 +81,7 @@ CsvWriter& CsvWriter::operator=(CsvWriter&& o) noexcept {
   return *this;
 }
 
-void CsvWriter::row(const std::vector<double>& values) {
+void CsvWriter::append(const std::vector<double>& values) {
   if (values.size() != header_.size())
     throw std::invalid_argument("CsvWriter: " + path_ + ": row has " + std::to_string(values.size()) +
                                 " values, the header has " + std::to_string(header_.size()) + " columns");
@@ -93,9 +93,22 @@ void CsvWriter::row(const std::vector<double>& values) {
   }
   buf_ += '\n';
   ++rows_;
+}
+
+void CsvWriter::flush_if_due() {
   if (buf_.size() > (1u << 20) ||
       std::chrono::steady_clock::now() - last_flush_ >= std::chrono::seconds(1))
     flush();
+}
+
+void CsvWriter::row(const std::vector<double>& values) {
+  append(values);
+  flush_if_due();
+}
+
+void CsvWriter::rows(const std::vector<std::vector<double>>& block) {
+  for (const auto& values : block) append(values);
+  flush_if_due();
 }
 
 void CsvWriter::flush() {

@@ -28,6 +28,10 @@ class CsvWriter {
   /// from the number of columns. Rows are buffered and reach the file at least once a
   /// second of wall time (checked on each row), on flush() and on destruction.
   void row(const std::vector<double>& values);
+  /// Several rows that reach the file together (one output step of a long-format file,
+  /// solids.csv): the file is only flushed after the last, and a failed write cuts it back
+  /// to the end of an earlier flush, so it always ends on a whole block.
+  void rows(const std::vector<std::vector<double>>& block);
   /// Throws std::runtime_error on a write error, after cutting the file back to its last
   /// whole row; the writer then writes nothing more.
   void flush();
@@ -40,6 +44,8 @@ class CsvWriter {
 
  private:
   CsvWriter() = default;
+  void append(const std::vector<double>& values);  ///< one row into buf_
+  void flush_if_due();  ///< flush() once a second of wall time or past 1 MiB of rows
   struct Closer { void operator()(std::FILE* f) const { if (f) std::fclose(f); } };
   std::string path_;
   std::vector<std::string> header_;

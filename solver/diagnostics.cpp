@@ -1,5 +1,7 @@
 #include "solver/diagnostics.hpp"
 
+#include <limits>
+
 #include "solver/simulation.hpp"
 
 namespace refmap {
@@ -36,7 +38,7 @@ const Column kColumns[] = {
     {"contact_energy",     true,  [](const RowState& r) { return r.sim.contact()->energy(); }},
 };
 
-/// Written for every solid k as solidK_NAME, after the columns above.
+/// The columns of solids.csv after step, time and solid: one row per solid and output step.
 struct SolidColumn {
   const char* name;
   double (*value)(const RowState&, int k);
@@ -53,8 +55,9 @@ const SolidColumn kSolidColumns[] = {
     {"gap_wall",  [](const RowState& r, int k) { return r.sim.contact()->gap_wall(k); }},
 };
 
-/// Written after those for every rigid solid k (motion != "free"; solver/rigid_body.hpp):
-/// the fluid's force and torque on it (drag and lift for a flow along x) and its rotation.
+/// Written after those when the scene has a rigid solid (motion != "free";
+/// solver/rigid_body.hpp): the fluid's force and torque on it (drag and lift for a flow
+/// along x) and its rotation; nan on the rows of the other solids.
 const SolidColumn kBodyColumns[] = {
     {"fx",     [](const RowState& r, int k) { return r.sim.bodies()->load(k).fx; }},
     {"fy",     [](const RowState& r, int k) { return r.sim.bodies()->load(k).fy; }},
@@ -73,6 +76,12 @@ const Column kImplicitColumns[] = {
 
 bool is_body(const Simulation& sim, int k) { return sim.bodies() && sim.bodies()->rigid(k); }
 
+bool any_body(const Simulation& sim) {
+  for (int k = 0; k < int(sim.solids().size()); ++k)
+    if (is_body(sim, k)) return true;
+  return false;
+}
+
 }  // namespace
 
 std::vector<std::string> diagnostic_columns(const Simulation& sim) {
@@ -80,12 +89,6 @@ std::vector<std::string> diagnostic_columns(const Simulation& sim) {
   std::vector<std::string> c;
   for (const Column& col : kColumns)
     if (!col.needs_solids || nsolids > 0) c.push_back(col.name);
-  for (int k = 0; k < nsolids; ++k)
-    for (const SolidColumn& col : kSolidColumns)
-      c.push_back("solid" + std::to_string(k) + "_" + col.name);
-  for (int k = 0; k < nsolids; ++k)
-    if (is_body(sim, k))
-      for (const SolidColumn& col : kBodyColumns) c.push_back("solid" + std::to_string(k) + "_" + col.name);
   if (sim.implicit_velocity())
     for (const Column& col : kImplicitColumns) c.push_back(col.name);
   for (const auto& comp : sim.components())  // solver/component.hpp, in the order added
@@ -99,15 +102,40 @@ std::vector<double> diagnostic_values(const Simulation& sim, double last_dt, dou
   std::vector<double> v;
   for (const Column& col : kColumns)
     if (!col.needs_solids || nsolids > 0) v.push_back(col.value(r));
-  for (int k = 0; k < nsolids; ++k)
-    for (const SolidColumn& col : kSolidColumns) v.push_back(col.value(r, k));
-  for (int k = 0; k < nsolids; ++k)
-    if (is_body(sim, k))
-      for (const SolidColumn& col : kBodyColumns) v.push_back(col.value(r, k));
   if (sim.implicit_velocity())
     for (const Column& col : kImplicitColumns) v.push_back(col.value(r));
   for (const auto& comp : sim.components()) comp->values(sim, v);
   return v;
+}
+
+}  // namespace refmap
+
+namespace refmap {
+
+std::vector<std::string> solid_columns(const Simulation& sim) {
+  if (sim.solids().empty()) return {};
+  std::vector<std::string> c{"step", "time", "solid"};
+  for (const SolidColumn& col : kSolidColumns) c.push_back(col.name);
+  if (any_body(sim))
+    for (const SolidColumn& col : kBodyColumns) c.push_back(col.name);
+  return c;
+}
+
+std::vector<std::vector<double>> solid_values(const Simulation& sim) {
+  const int nsolids = int(sim.solids().size());
+  if (nsolids == 0) return {};
+  const RowState r{sim, 0.0, 0.0, 0.0, sim.solid_diagnostics()};  // no global column is read
+  const bool bodies = any_body(sim);
+  std::vector<std::vector<double>> rows(static_cast<std::size_t>(nsolids));
+  for (int k = 0; k < nsolids; ++k) {
+    std::vector<double>& v = rows[std::size_t(k)];
+    v = {double(sim.steps()), sim.time(), double(k)};
+    for (const SolidColumn& col : kSolidColumns) v.push_back(col.value(r, k));
+    if (bodies)
+      for (const SolidColumn& col : kBodyColumns)
+        v.push_back(is_body(sim, k) ? col.value(r, k) : std::numeric_limits<double>::quiet_NaN());
+  }
+  return rows;
 }
 
 }  // namespace refmap

@@ -104,6 +104,8 @@ void print_outputs(const fs::path& dir) {
   for (const auto& p : pvd) std::printf("frames:      %s\n", p.string().c_str());
   const fs::path diag = dir / "diagnostics.csv";
   if (fs::exists(diag, ec)) std::printf("diagnostics: %s\n", diag.string().c_str());
+  const fs::path solids = dir / "solids.csv";
+  if (fs::exists(solids, ec)) std::printf("solids:      %s\n", solids.string().c_str());
   std::vector<fs::path> probes;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string f = e.path().filename().string();
@@ -350,7 +352,7 @@ int main(int argc, char** argv) {
   long warmup = 0;
   CLI::App* run = app.add_subcommand("run", "run a simulation from a scene file");
   run->footer("Writes DIR/scene.toml (the scene, for reproducing the run), VTK frames with a .pvd series,\n"
-              "diagnostics.csv, probe CSVs, timings.csv (wall time per phase) and checkpoint.bin. Exit codes:\n"
+              "diagnostics.csv, solids.csv, probe CSVs, timings.csv (wall time per phase) and checkpoint.bin. Exit codes:\n"
               "0 ok, 1 a bug, 2 bad command line or scene file (nothing written), 3 the simulation failed\n"
               "(partial output valid), 130/143 stopped by SIGINT/SIGTERM (continue with refmap resume DIR).\n"
               "Scene keys: scenes/README.md.");

@@ -83,6 +83,13 @@ class RunOutput {
          << ", dx " << g.dx;
     csv_ = std::make_unique<CsvWriter>((fs::path(dir_) / "diagnostics.csv").string(),
                                        diagnostic_columns(sim_), head.str());
+    if (!sim_.solids().empty()) {
+      std::ostringstream sh;
+      sh << "refmap per-solid diagnostics, scene " << cfg.name << ", one row per solid and diagnostics.csv row;"
+         << " solid = index in the scene:";
+      for (std::size_t k = 0; k < sim_.solids().size(); ++k) sh << ' ' << k << '=' << sim_.solids()[k]->spec().name;
+      solids_csv_ = std::make_unique<CsvWriter>((fs::path(dir_) / "solids.csv").string(), solid_columns(sim_), sh.str());
+    }
     if (cfg.write_vtk)  // no .pvd without frames
       pvd_ = std::make_unique<PvdSeries>((fs::path(dir_) / (cfg.name + ".pvd")).string());
     if (cfg.write_vtk && sim_.tracers())
@@ -106,6 +113,8 @@ class RunOutput {
     }
     const auto bytes = std::size_t(r.get_i64("run.csv_bytes"));
     const long rows = long(r.get_i64("run.csv_rows"));
+    const auto solids_bytes = std::size_t(r.get_i64("run.solids_bytes"));
+    const long solids_rows = long(r.get_i64("run.solids_rows"));
     // tracers.csv and markers.csv (only scenes with tracers / markers have the records)
     std::int64_t point_csv[2][2] = {{0, 0}, {0, 0}};
     const bool has_points[2] = {sim_.config().write_vtk && sim_.tracers(), sim_.config().write_vtk && sim_.markers()};
@@ -120,9 +129,11 @@ class RunOutput {
     // continued changes nothing
     std::error_code ec;
     const fs::path diag = fs::path(dir_) / "diagnostics.csv";
-    if (bytes > 0 && (fs::file_size(diag, ec) < bytes || ec))
-      throw CheckpointError(diag.string() + " is shorter than when the checkpoint " + r.path() +
-                            " was written: the run cannot be continued");
+    const fs::path solids = fs::path(dir_) / "solids.csv";
+    for (const auto& [f, size] : {std::pair{diag, bytes}, std::pair{solids, solids_bytes}})
+      if (size > 0 && (fs::file_size(f, ec) < size || ec))
+        throw CheckpointError(f.string() + " is shorter than when the checkpoint " + r.path() +
+                              " was written: the run cannot be continued");
     for (int m = 0; m < 2; ++m) {
       const fs::path f = fs::path(dir_) / (m == 0 ? "tracers.csv" : "markers.csv");
       if (point_csv[m][0] > 0 && (fs::file_size(f, ec) < std::uintmax_t(point_csv[m][0]) || ec))
@@ -141,6 +152,8 @@ class RunOutput {
     if (bytes > 0)
       csv_ = std::make_unique<CsvWriter>(CsvWriter::resume((fs::path(dir_) / "diagnostics.csv").string(),
                                                            diagnostic_columns(sim_), bytes, rows));
+    if (solids_bytes > 0)
+      solids_csv_ = std::make_unique<CsvWriter>(CsvWriter::resume(solids.string(), solid_columns(sim_), solids_bytes, solids_rows));
     if (cfg.write_vtk) {
       pvd_ = std::make_unique<PvdSeries>((fs::path(dir_) / (cfg.name + ".pvd")).string());
       pvd_->restore(entries);
@@ -165,6 +178,8 @@ class RunOutput {
     }
     w.put_i64("run.csv_bytes", csv_ ? std::int64_t(csv_->bytes()) : 0);
     w.put_i64("run.csv_rows", csv_ ? csv_->rows() : 0);
+    w.put_i64("run.solids_bytes", solids_csv_ ? std::int64_t(solids_csv_->bytes()) : 0);
+    w.put_i64("run.solids_rows", solids_csv_ ? solids_csv_->rows() : 0);
     if (sim_.config().write_vtk && sim_.tracers()) {
       w.put_i64("run.tracers_bytes", tracers_csv_ ? std::int64_t(tracers_csv_->bytes()) : 0);
       w.put_i64("run.tracers_rows", tracers_csv_ ? tracers_csv_->rows() : 0);
@@ -188,7 +203,7 @@ class RunOutput {
       const bool ours = (f.rfind("frame_", 0) == 0 && (e.path().extension() == ".vti" || f.ends_with(".vti.tmp"))) ||
                         e.path().extension() == ".pvd" || f.ends_with(".pvd.tmp") ||
                         (f.rfind("probe_", 0) == 0 && e.path().extension() == ".csv") || f == "diagnostics.csv" ||
-                        f == "tracers.csv" || f == "markers.csv" || f == "events.csv" || f == "timings.csv" || f.rfind("checkpoint.bin", 0) == 0;
+                        f == "solids.csv" || f == "tracers.csv" || f == "markers.csv" || f == "events.csv" || f == "timings.csv" || f.rfind("checkpoint.bin", 0) == 0;
       if (ours && e.is_regular_file(ec)) stale.push_back(e.path());
     }
     for (const auto& p : stale) fs::remove(p, ec);
@@ -251,11 +266,12 @@ class RunOutput {
 
  public:
 
-  /// A diagnostics.csv row of the current state.
+  /// A diagnostics.csv row of the current state, and its solids.csv rows.
   void row(double last_dt, double wall_s) {
     if (!csv_) return;
     ScopedPhase ph(sim_.timers(), "diagnostics");
     csv_->row(diagnostic_values(sim_, last_dt, wall_s));
+    if (solids_csv_) solids_csv_->rows(solid_values(sim_));
   }
 
   /// probe_NAME.csv of every probe of the scene.
@@ -270,6 +286,7 @@ class RunOutput {
 
   void flush() {
     if (csv_) csv_->flush();
+    if (solids_csv_) solids_csv_->flush();
     if (tracers_csv_) tracers_csv_->flush();
     if (markers_csv_) markers_csv_->flush();
   }
@@ -290,6 +307,7 @@ class RunOutput {
   Simulation& sim_;
   std::string dir_;
   std::unique_ptr<CsvWriter> csv_;
+  std::unique_ptr<CsvWriter> solids_csv_;  ///< only with solids
   std::unique_ptr<PvdSeries> pvd_;
   std::unique_ptr<CsvWriter> tracers_csv_, markers_csv_;  ///< only with tracers / markers and VTK frames
   int frame_ = 0;

@@ -369,7 +369,7 @@ std::vector<KeyDef> build_keys() {
                           "`\"free\"`: a soft solid moved by the flow; a rigid body (docs/bodies.md) held still "
                           "(`\"fixed\"`), moved on a path (`\"prescribed\"`) or pinned at a point and free to rotate "
                           "(`\"pinned\"`); its velocity is imposed in its region and the force on it reported in "
-                          "`diagnostics.csv`. A rigid body takes no `mu_s`; its `viscosity` defaults to the fluid's"),
+                          "`solids.csv`. A rigid body takes no `mu_s`; its `viscosity` defaults to the fluid's"),
       only(choice<BodyForcing>("solid", "forcing", ds.forcing,
                                "how a rigid body's velocity is imposed (docs/bodies.md): `\"diffuse\"` relaxes the "
                                "cells by their sub-cell fraction (its surface slips by O(dt)); `\"interpolated\"` is "

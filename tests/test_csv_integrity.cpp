@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -70,5 +71,47 @@ TEST(CsvIntegrity, FullDiskLeavesWholeRows) {
   }
   EXPECT_GT(data, 3);
   EXPECT_LT(data, rows_given + 1);
+  fs::remove(f);
+}
+
+// solids.csv writes one block of rows per output step (CsvWriter::rows): a full disk must
+// leave it ending on a whole block -- every solid of the last step present -- not only on
+// a whole row. Blocks of 3 rows of ~60 bytes, a limit of 1000 bytes: the limit falls inside
+// a block (1000 is no multiple of a block's ~180 bytes), and the file must be cut back to
+// the block before it.
+TEST(CsvIntegrity, FullDiskLeavesWholeBlocks) {
+  const fs::path f = fs::temp_directory_path() / ("refmap_csv_blocks_" + std::to_string(::getpid()) + ".csv");
+  std::string error;
+  {
+    FileSizeLimit limit(1000);
+    refmap::CsvWriter w(f.string(), {"step", "time", "solid", "a", "b"}, "scene: full disk, blocks");
+    try {
+      for (int k = 0; k < 200; ++k) {
+        std::vector<std::vector<double>> block;
+        for (int s = 0; s < 3; ++s) block.push_back({double(k), 0.1 * k, double(s), 1.0 / 3.0, 2.0 / 7.0});
+        w.rows(block);
+        w.flush();
+      }
+    } catch (const std::runtime_error& e) {
+      error = e.what();
+    }
+  }
+  ASSERT_FALSE(error.empty()) << "the file size limit was never reached";
+  std::ifstream in(f);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), '\n');
+  std::istringstream lines(text);
+  std::string line;
+  long data = 0;
+  while (std::getline(lines, line)) {
+    if (line.empty() || line[0] == '#' || line[0] == 's') continue;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 4) << line;
+    ++data;
+  }
+  EXPECT_GT(data, 3);
+  EXPECT_EQ(data % 3, 0) << "the file ends inside a block: " << data << " rows";
   fs::remove(f);
 }

@@ -28,6 +28,14 @@ struct Csv {
       }
     throw std::runtime_error("no column " + name);
   }
+  /// The rows whose column `name` equals `value` (one solid's rows of solids.csv).
+  Csv where(const std::string& name, double value) const {
+    Csv out{header, {}};
+    const std::vector<double> c = column(name);
+    for (size_t k = 0; k < rows.size(); ++k)
+      if (c[k] == value) out.rows.push_back(rows[k]);
+    return out;
+  }
 };
 
 inline Csv read_csv(const std::string& path) {

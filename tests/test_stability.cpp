@@ -111,8 +111,9 @@ Outcome run_disc_tgv(const std::string& tag, std::vector<std::string> sets, cons
   o.failed = sum.failed;
   o.failure = sum.failure;
   const Csv d = read_csv((dir / "diagnostics.csv").string());
-  const auto area = d.column("solid0_area"), e = d.column("total_energy"), ec = d.column("contact_energy");
-  const auto gw = d.column("solid0_gap_wall"), gs = d.column("solid0_gap_solid");
+  const Csv s0 = read_csv((dir / "solids.csv").string()).where("solid", 0);  // a row per row of d
+  const auto area = s0.column("area"), e = d.column("total_energy"), ec = d.column("contact_energy");
+  const auto gw = s0.column("gap_wall"), gs = s0.column("gap_solid");
   const auto res = d.column("poisson_residual");
   const double exact = M_PI * 0.2 * 0.2, dx = sim.grid().dx;
   for (size_t k = 0; k < area.size(); ++k) {

@@ -153,11 +153,15 @@ TEST_F(Survival, InterruptedAndResumedRunIsBitIdentical) {
   const std::string partial = slurp(B / "diagnostics.csv");
   ASSERT_FALSE(partial.empty());
   EXPECT_EQ(partial.back(), '\n');
+  const std::string partial_solids = slurp(B / "solids.csv");  // and solids.csv on a whole step
+  ASSERT_FALSE(partial_solids.empty());
+  EXPECT_EQ(partial_solids.back(), '\n');
 
   const Result resumed = run({"resume", B.string(), "--threads", "1", "--quiet"}, dir_ / "c");
   ASSERT_EQ(resumed.code, 0) << resumed.err;
 
   EXPECT_EQ(diagnostics_without_wall_time(A / "diagnostics.csv"), diagnostics_without_wall_time(B / "diagnostics.csv"));
+  EXPECT_EQ(slurp(A / "solids.csv"), slurp(B / "solids.csv"));
   EXPECT_EQ(slurp(A / "events.csv"), slurp(B / "events.csv"));
   EXPECT_EQ(slurp(A / "two_solids_tgv.pvd"), slurp(B / "two_solids_tgv.pvd"));
   int frames = 0;
