@@ -1,5 +1,6 @@
 #include "solver/diagnostics.hpp"
 
+#include "solver/control_volume_forces.hpp"
 #include "solver/simulation.hpp"
 
 namespace refmap {
@@ -53,12 +54,23 @@ const SolidColumn kSolidColumns[] = {
     {"gap_wall",  [](const RowState& r, int k) { return r.sim.contact()->gap_wall(k); }},
 };
 
-/// Written after those for every rigid solid k (motion != "free"; solver/rigid_body.hpp):
-/// the fluid's force and torque on it (drag and lift for a flow along x) and its rotation.
+/// The force the columns below report (output.body_force): a rigid body's direct forcing,
+/// or every body's control-volume balance (solver/control_volume_forces.hpp).
+const BodyLoad& body_load(const Simulation& sim, int k) {
+  return sim.control_volume_forces() ? sim.control_volume_forces()->load(k) : sim.bodies()->load(k);
+}
+
+/// Written after those for every solid k with a force (a rigid solid, motion != "free";
+/// with output.body_force = "control_volume" also a free soft solid, not a clamped one):
+/// the fluid's force and torque on it (drag and lift for a flow along x).
+const SolidColumn kForceColumns[] = {
+    {"fx",     [](const RowState& r, int k) { return body_load(r.sim, k).fx; }},
+    {"fy",     [](const RowState& r, int k) { return body_load(r.sim, k).fy; }},
+    {"torque", [](const RowState& r, int k) { return body_load(r.sim, k).torque; }},
+};
+
+/// Then, for a rigid solid (solver/rigid_body.hpp), its rotation.
 const SolidColumn kBodyColumns[] = {
-    {"fx",     [](const RowState& r, int k) { return r.sim.bodies()->load(k).fx; }},
-    {"fy",     [](const RowState& r, int k) { return r.sim.bodies()->load(k).fy; }},
-    {"torque", [](const RowState& r, int k) { return r.sim.bodies()->load(k).torque; }},
     {"angle",  [](const RowState& r, int k) { return r.sim.bodies()->pose(k).theta; }},
     {"omega",  [](const RowState& r, int k) { return r.sim.bodies()->pose(k).omega; }},
 };
@@ -72,6 +84,9 @@ const Column kImplicitColumns[] = {
 };
 
 bool is_body(const Simulation& sim, int k) { return sim.bodies() && sim.bodies()->rigid(k); }
+bool has_force(const Simulation& sim, int k) {
+  return sim.control_volume_forces() ? sim.control_volume_forces()->has_load(k) : is_body(sim, k);
+}
 
 }  // namespace
 
@@ -83,9 +98,12 @@ std::vector<std::string> diagnostic_columns(const Simulation& sim) {
   for (int k = 0; k < nsolids; ++k)
     for (const SolidColumn& col : kSolidColumns)
       c.push_back("solid" + std::to_string(k) + "_" + col.name);
-  for (int k = 0; k < nsolids; ++k)
+  for (int k = 0; k < nsolids; ++k) {
+    if (has_force(sim, k))
+      for (const SolidColumn& col : kForceColumns) c.push_back("solid" + std::to_string(k) + "_" + col.name);
     if (is_body(sim, k))
       for (const SolidColumn& col : kBodyColumns) c.push_back("solid" + std::to_string(k) + "_" + col.name);
+  }
   if (sim.implicit_velocity())
     for (const Column& col : kImplicitColumns) c.push_back(col.name);
   return c;
@@ -99,9 +117,12 @@ std::vector<double> diagnostic_values(const Simulation& sim, double last_dt, dou
     if (!col.needs_solids || nsolids > 0) v.push_back(col.value(r));
   for (int k = 0; k < nsolids; ++k)
     for (const SolidColumn& col : kSolidColumns) v.push_back(col.value(r, k));
-  for (int k = 0; k < nsolids; ++k)
+  for (int k = 0; k < nsolids; ++k) {
+    if (has_force(sim, k))
+      for (const SolidColumn& col : kForceColumns) v.push_back(col.value(r, k));
     if (is_body(sim, k))
       for (const SolidColumn& col : kBodyColumns) v.push_back(col.value(r, k));
+  }
   if (sim.implicit_velocity())
     for (const Column& col : kImplicitColumns) v.push_back(col.value(r));
   return v;

@@ -251,6 +251,11 @@ std::vector<KeyDef> build_keys() {
       num("output", "checkpoint_minutes", d.checkpoint_minutes, ge(0, "0 = not by wall time"),
           "also write a checkpoint every this many wall minutes (`--checkpoint-minutes` overrides)"),
       integer("output", "diagnostics_every", d.diagnostics_every, ge(1), "steps between rows of `diagnostics.csv`"),
+      choice<BodyForceEstimator>("output", "body_force", d.body_force,
+                                 "the force in `solid<k>_fx`, `_fy`, `_torque`: `\"forcing\"`, a rigid body's direct "
+                                 "forcing; `\"control_volume\"`, every unclamped solid's (a rigid body with its "
+                                 "clamped solids), from the fluid's momentum balance on a box around it "
+                                 "(docs/bodies.md)"),
       num("output", "log_interval", d.log_interval_s, gt(0, "seconds"),
           "wall seconds between progress log lines when stderr is not a terminal"),
 

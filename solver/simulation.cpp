@@ -16,6 +16,7 @@
 #include "kernels/viscous.hpp"
 #include "solver/actuation.hpp"
 #include "solver/boundary.hpp"
+#include "solver/control_volume_forces.hpp"
 #include "solver/expression.hpp"
 #include "solver/markers.hpp"
 #include "solver/tracers.hpp"
@@ -61,6 +62,8 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg) {
     tracers_ = std::make_unique<Tracers>(cfg_.grid, tracer_seeds(cfg_.tracers), cfg_.bc[0].type == BcType::Periodic,
                                          cfg_.bc[2].type == BcType::Periodic);
   if (auto m = std::make_unique<Markers>(solids_, cfg_.grid); !m->empty()) markers_ = std::move(m);
+  if (cfg_.body_force == BodyForceEstimator::ControlVolume && !solids_.empty())
+    cv_forces_ = std::make_unique<ControlVolumeForces>(*this);
   for (const SolidSpec& sp : cfg_.solids)
     if (sp.actuation.enabled()) {
       actuation_.resize(cfg_.solids.size());
@@ -432,6 +435,7 @@ double Simulation::step(double dt) {
 double Simulation::step_state(double dt) {
   if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
   if (cfg_.flow == FlowMode::Prescribed) return step_prescribed(dt);
+  if (cv_forces_) cv_forces_->begin_step(*this);  // the bodies' forces (control_volume_forces.hpp)
   if (!solids_.empty()) {
     rho_old_ = rho_;
     move_solids(dt);                     // steps 1-3
@@ -447,6 +451,7 @@ double Simulation::step_state(double dt) {
   project(dt);                           // steps 7-9
   t_ += dt;
   ++nstep_;
+  if (cv_forces_) cv_forces_->end_step(*this, dt);
   if (contact_) observe_contact();
   return dt;
 }

@@ -23,6 +23,7 @@ class CheckpointReader;
 class Tracers;
 class Markers;
 class Actuation;
+class ControlVolumeForces;
 
 class Simulation {
  public:
@@ -45,6 +46,7 @@ class Simulation {
   const Field& v() const { return v_; }
   const Field& p() const { return p_; }
   const Field& rho() const { return rho_; }
+  const Field& mu() const { return mu_; }  ///< blended viscosity (eq. 3.6)
   const Field& uf() const { return uf_; }  ///< x-face normal velocity, (nx+1) x ny
   const Field& vf() const { return vf_; }  ///< y-face normal velocity, nx x (ny+1)
   Field& u_mut() { ke_step_ = -1; return u_; }
@@ -74,6 +76,9 @@ class Simulation {
   const Field& contact_force_y() const { return cfy_; }
   /// Rigid bodies' poses and loads (solver/rigid_body.hpp; null without a rigid body).
   const RigidBodies* bodies() const { return bodies_.get(); }
+  /// Bodies' forces from the fluid's momentum balance (output.body_force = "control_volume";
+  /// solver/control_volume_forces.hpp), else null.
+  const ControlVolumeForces* control_volume_forces() const { return cv_forces_.get(); }
   /// Total momentum sum rho u dx^2 (x and y).
   std::pair<double, double> momentum() const;
 
@@ -190,6 +195,7 @@ class Simulation {
   std::unique_ptr<Markers> markers_;
   Field tu_, tv_;                          // end-of-step velocity with ghosts, for the tracers
   std::vector<std::unique_ptr<Actuation>> actuation_;  ///< per solid (null: not actuated)
+  std::unique_ptr<ControlVolumeForces> cv_forces_;     ///< output.body_force = "control_volume"
 };
 
 }  // namespace refmap
