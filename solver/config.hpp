@@ -36,6 +36,11 @@ enum class SolidMotion { Free, Fixed, Prescribed, Pinned };
 /// Diffuse, relaxed by the sub-cell fraction chi; Interpolated, sharp (cells inside take the
 /// body's velocity, the fluid cells next to the surface a value interpolated along the normal).
 enum class BodyForcing { Diffuse, Interpolated };
+/// Config::body_force (output.body_force): the force written as solidK_fx, _fy, _torque.
+/// Forcing: a rigid body's, the momentum its direct forcing adds (solver/rigid_body.hpp);
+/// ControlVolume: every body's, from a momentum balance of the fluid around it
+/// (solver/control_volume_forces.hpp).
+enum class BodyForceEstimator { Forcing, ControlVolume };
 /// SolidsOptions::extrapolation: Algorithm 2 (least squares) or the PDE baseline.
 enum class ExtrapolationMethod { Lsq, Pde };
 /// SolidsOptions::stress_form: discretisation of the solid stress divergence.
@@ -227,6 +232,7 @@ struct Config {
   /// output.wall_stress: the shear stress on the bottom and top walls and the relative
   /// viscosity of a shear cell in diagnostics.csv (solver/wall_stress.hpp)
   bool wall_stress = false;
+  BodyForceEstimator body_force = BodyForceEstimator::Forcing;  ///< output.body_force
   double log_interval_s = 2.0;   ///< wall seconds between log lines when not on a terminal
   std::vector<ProbeSpec> probes;
   std::vector<TracerSeed> tracers;  ///< passive fluid tracers (solver/tracers.hpp)

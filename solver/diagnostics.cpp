@@ -2,6 +2,7 @@
 
 #include <limits>
 
+#include "solver/control_volume_forces.hpp"
 #include "solver/simulation.hpp"
 
 namespace refmap {
@@ -55,13 +56,24 @@ const SolidColumn kSolidColumns[] = {
     {"gap_wall",  [](const RowState& r, int k) { return r.sim.contact()->gap_wall(k); }},
 };
 
-/// Written after those when the scene has a rigid solid (motion != "free";
-/// solver/rigid_body.hpp): the fluid's force and torque on it (drag and lift for a flow
-/// along x) and its rotation; nan on the rows of the other solids.
+/// The force the columns below report (output.body_force): a rigid body's direct forcing,
+/// or every body's control-volume balance (solver/control_volume_forces.hpp).
+const BodyLoad& body_load(const Simulation& sim, int k) {
+  return sim.control_volume_forces() ? sim.control_volume_forces()->load(k) : sim.bodies()->load(k);
+}
+
+/// solids.csv columns after those for every solid k with a force (a rigid solid, motion != "free";
+/// with output.body_force = "control_volume" also a free soft solid, not a clamped one):
+/// the fluid's force and torque on it (drag and lift for a flow along x); nan on the
+/// rows of the other solids.
+const SolidColumn kForceColumns[] = {
+    {"fx",     [](const RowState& r, int k) { return body_load(r.sim, k).fx; }},
+    {"fy",     [](const RowState& r, int k) { return body_load(r.sim, k).fy; }},
+    {"torque", [](const RowState& r, int k) { return body_load(r.sim, k).torque; }},
+};
+
+/// Then, for a rigid solid (solver/rigid_body.hpp), its rotation.
 const SolidColumn kBodyColumns[] = {
-    {"fx",     [](const RowState& r, int k) { return r.sim.bodies()->load(k).fx; }},
-    {"fy",     [](const RowState& r, int k) { return r.sim.bodies()->load(k).fy; }},
-    {"torque", [](const RowState& r, int k) { return r.sim.bodies()->load(k).torque; }},
     {"angle",  [](const RowState& r, int k) { return r.sim.bodies()->pose(k).theta; }},
     {"omega",  [](const RowState& r, int k) { return r.sim.bodies()->pose(k).omega; }},
 };
@@ -75,10 +87,19 @@ const Column kImplicitColumns[] = {
 };
 
 bool is_body(const Simulation& sim, int k) { return sim.bodies() && sim.bodies()->rigid(k); }
+bool has_force(const Simulation& sim, int k) {
+  return sim.control_volume_forces() ? sim.control_volume_forces()->has_load(k) : is_body(sim, k);
+}
 
 bool any_body(const Simulation& sim) {
   for (int k = 0; k < int(sim.solids().size()); ++k)
     if (is_body(sim, k)) return true;
+  return false;
+}
+
+bool any_force(const Simulation& sim) {
+  for (int k = 0; k < int(sim.solids().size()); ++k)
+    if (has_force(sim, k)) return true;
   return false;
 }
 
@@ -116,6 +137,8 @@ std::vector<std::string> solid_columns(const Simulation& sim) {
   if (sim.solids().empty()) return {};
   std::vector<std::string> c{"step", "time", "solid"};
   for (const SolidColumn& col : kSolidColumns) c.push_back(col.name);
+  if (any_force(sim))
+    for (const SolidColumn& col : kForceColumns) c.push_back(col.name);
   if (any_body(sim))
     for (const SolidColumn& col : kBodyColumns) c.push_back(col.name);
   return c;
@@ -125,15 +148,17 @@ std::vector<std::vector<double>> solid_values(const Simulation& sim) {
   const int nsolids = int(sim.solids().size());
   if (nsolids == 0) return {};
   const RowState r{sim, 0.0, 0.0, 0.0, sim.solid_diagnostics()};  // no global column is read
-  const bool bodies = any_body(sim);
+  const bool forces = any_force(sim), bodies = any_body(sim);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::vector<double>> rows(static_cast<std::size_t>(nsolids));
   for (int k = 0; k < nsolids; ++k) {
     std::vector<double>& v = rows[std::size_t(k)];
     v = {double(sim.steps()), sim.time(), double(k)};
     for (const SolidColumn& col : kSolidColumns) v.push_back(col.value(r, k));
+    if (forces)
+      for (const SolidColumn& col : kForceColumns) v.push_back(has_force(sim, k) ? col.value(r, k) : nan);
     if (bodies)
-      for (const SolidColumn& col : kBodyColumns)
-        v.push_back(is_body(sim, k) ? col.value(r, k) : std::numeric_limits<double>::quiet_NaN());
+      for (const SolidColumn& col : kBodyColumns) v.push_back(is_body(sim, k) ? col.value(r, k) : nan);
   }
   return rows;
 }

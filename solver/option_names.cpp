@@ -58,6 +58,12 @@ std::span<const OptionName<BodyForcing>> option_names(BodyForcing) {
   return span_of(n);
 }
 
+std::span<const OptionName<BodyForceEstimator>> option_names(BodyForceEstimator) {
+  static const OptionName<BodyForceEstimator> n[] = {{BodyForceEstimator::Forcing, "forcing"},
+                                                     {BodyForceEstimator::ControlVolume, "control_volume"}};
+  return span_of(n);
+}
+
 std::span<const OptionName<ExtrapolationMethod>> option_names(ExtrapolationMethod) {
   static const OptionName<ExtrapolationMethod> n[] = {{ExtrapolationMethod::Lsq, "lsq"},
                                                       {ExtrapolationMethod::Pde, "pde"}};

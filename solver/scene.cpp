@@ -825,6 +825,7 @@ void parse_output(const Ctx& ctx, const Table& top, Config& cfg) {
   o.require(de <= std::numeric_limits<int>::max(), "diagnostics_every",
             "must be <= " + std::to_string(std::numeric_limits<int>::max()) + ", got " + std::to_string(de));
   cfg.diagnostics_every = int(de);
+  cfg.body_force = o.option<BodyForceEstimator>("body_force");
   cfg.log_interval_s = o.number("log_interval");
   cfg.wall_stress = o.boolean("wall_stress");
   auto wall = [](const SideBc& b) { return b.type == BcType::NoSlip || b.type == BcType::MovingWall; };

@@ -254,6 +254,11 @@ std::vector<KeyDef> build_keys() {
       boolean("output", "wall_stress", d.wall_stress,
               "shear stress on the bottom and top walls and the relative viscosity of a shear cell in "
               "`diagnostics.csv` (both must be walls)"),
+      choice<BodyForceEstimator>("output", "body_force", d.body_force,
+                                 "the force in `solid<k>_fx`, `_fy`, `_torque`: `\"forcing\"`, a rigid body's direct "
+                                 "forcing; `\"control_volume\"`, every unclamped solid's (a rigid body with its "
+                                 "clamped solids), from the fluid's momentum balance on a box around it "
+                                 "(docs/bodies.md)"),
       num("output", "log_interval", d.log_interval_s, gt(0, "seconds"),
           "wall seconds between progress log lines when stderr is not a terminal"),
 

@@ -16,6 +16,7 @@
 #include "kernels/viscous.hpp"
 #include "solver/actuation.hpp"
 #include "solver/boundary.hpp"
+#include "solver/control_volume_forces.hpp"
 #include "solver/expression.hpp"
 #include "solver/markers.hpp"
 #include "solver/tracers.hpp"
@@ -52,6 +53,8 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
   if (cfg_.solid_time == SolidStressTime::UpperConvected)
     for (Field* f : {&qxx_, &qxy_, &qyy_}) f->resize(nx, ny, ng);
   initialise();
+  if (cfg_.body_force == BodyForceEstimator::ControlVolume && !solids_.empty())
+    cv_forces_ = std::make_unique<ControlVolumeForces>(*this);
   if (!solids_.empty()) {
     // velocity scale of the contact pressure (solver/contact.hpp): the largest initial
     // speed on the grid and the free-fall speed over the domain along g
@@ -439,6 +442,7 @@ double Simulation::step(double dt) {
 double Simulation::step_state(double dt) {
   if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
   if (cfg_.flow == FlowMode::Prescribed) return step_prescribed(dt);
+  if (cv_forces_) cv_forces_->begin_step(*this);  // the bodies' forces (control_volume_forces.hpp)
   if (!solids_.empty()) {
     rho_old_ = rho_;
     move_solids(dt);                     // steps 1-3
@@ -456,6 +460,7 @@ double Simulation::step_state(double dt) {
   project(dt);                           // steps 7-9
   t_ += dt;
   ++nstep_;
+  if (cv_forces_) cv_forces_->end_step(*this, dt);
   if (contact_) observe_contact();
   return dt;
 }

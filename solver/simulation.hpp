@@ -25,6 +25,7 @@ class CheckpointWriter;
 class CheckpointReader;
 class Tracers;
 class Markers;
+class ControlVolumeForces;
 
 class Simulation {
  public:
@@ -94,6 +95,9 @@ class Simulation {
   const Field& contact_force_y() const { return cfy_; }
   /// Rigid bodies' poses and loads (solver/rigid_body.hpp; null without a rigid body).
   const RigidBodies* bodies() const { return bodies_.get(); }
+  /// Bodies' forces from the fluid's momentum balance (output.body_force = "control_volume";
+  /// solver/control_volume_forces.hpp), else null.
+  const ControlVolumeForces* control_volume_forces() const { return cv_forces_.get(); }
   /// Total momentum sum rho u dx^2 (x and y).
   std::pair<double, double> momentum() const;
 
@@ -229,6 +233,7 @@ class Simulation {
   std::vector<std::unique_ptr<Component>> components_;
   StateRegistry state_;
   std::function<void(Stage, double)> probe_;  ///< set_stage_probe (empty: none)
+  std::unique_ptr<ControlVolumeForces> cv_forces_;  ///< output.body_force = "control_volume"
 };
 
 }  // namespace refmap
