@@ -34,8 +34,10 @@ enum class SolidVelocity { Rigid, Fluid };
 enum class SolidMotion { Free, Fixed, Prescribed, Pinned };
 /// SolidSpec::forcing: how a rigid body's velocity is imposed (solver/rigid_body.hpp):
 /// Diffuse, relaxed by the sub-cell fraction chi; Interpolated, sharp (cells inside take the
-/// body's velocity, the fluid cells next to the surface a value interpolated along the normal).
-enum class BodyForcing { Diffuse, Interpolated };
+/// body's velocity, the fluid cells next to the surface a value interpolated along the normal);
+/// Sharp, Interpolated with the cells inside cut out of the pressure solve (their faces carry
+/// the body's velocity and are not corrected).
+enum class BodyForcing { Diffuse, Interpolated, Sharp };
 /// SolidsOptions::extrapolation: Algorithm 2 (least squares) or the PDE baseline.
 enum class ExtrapolationMethod { Lsq, Pde };
 /// SolidsOptions::stress_form: discretisation of the solid stress divergence.
