@@ -626,7 +626,8 @@ void Simulation::face_accelerations() {
   face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
              g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, face_boundary(cfg_));
   add_contact_face_accel();
-  if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);  // not -g (1 - rho_f 0)
+  // forcing = "sharp": G_f of the cut faces (with beta = 0 there face_accel leaves -g)
+  if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);
   timers_.add("face velocities", std::chrono::duration<double>(PhaseTimers::clock::now() - t0).count(), 0);
 }
 
