@@ -8,7 +8,16 @@ Delta p = p(0.15, 0.2) - p(0.25, 0.2); probe_u_wake.csv (u on y = 0.2 from the b
 cylinder, x = 0.25, to x = 0.45) the recirculation length L_a = x_r - 0.25, x_r the last zero
 of u (linear between samples) after which u stays positive. The reference bounds of
 Schafer & Turek (1996), docs/references.md#cylinder-in-a-channel-at-re--20, are written as two more rows.
-Standard library only. Usage: cylinder_summary.py RUN_DIR... > results/cylinder_re20.csv
+The cost of each run sits beside its accuracy: steps, wall time, threads and ms per step.
+
+Usage: cylinder_summary.py [--convergence CSV] [--plot PNG] RUN_DIR... > results/cylinder_re20.csv
+  --convergence: per forcing and quantity, the error against the centre of the bounds on each
+    grid (runs named <forcing>_dx_<dx>), the observed order between successive grids,
+    log2(|e(dx)| / |e(dx/2)|), and from three successive grids the order of the differences,
+    log2(|v(4h) - v(2h)| / |v(2h) - v(h)|) (Richardson: no reference value needed) with the
+    limit v(h) + (v(h) - v(2h)) / (2^p - 1); standard library only.
+  --plot: accuracy against cost (|error| of c_D, c_L, Delta p, L_a against wall time), one line
+    per forcing over its grids, the dt study as open markers (needs Debian's matplotlib).
 """
 import csv
 import os
@@ -62,8 +71,13 @@ def summarise(run):
     radius = "0.05"
     if "radius=" in first:
         radius = first.split("radius=")[1].split()[0].strip("'\"")
+    name = run.rstrip("/").split("/")[-1]
+    forcing = "diffuse"  # the scene's default
+    if "forcing=" in first:
+        forcing = first.split("forcing=")[1].split()[0].strip("'\"")
     return {
-        "run": run.rstrip("/").split("/")[-1],
+        "run": name,
+        "forcing": forcing,
         "dx": round(2.2 / int(header_value(timings, "nx")), 6),
         "nx": header_value(timings, "nx"),
         "ny": header_value(timings, "ny"),
@@ -73,6 +87,7 @@ def summarise(run):
         "steps": last["step"],
         "t_end": f"{float(last['time']):.4g}",
         "wall_s": f"{float(header_value(timings, 'wall_s')):.1f}",
+        "ms_per_step": f"{1000 * float(header_value(timings, 'wall_s')) / max(1, int(last['step'])):.2f}",
         "c_D": f"{float(last['solid0_fx']) / q:.5f}",
         "c_L": f"{float(last['solid0_fy']) / q:.5f}",
         "dp": f"{float(pp[0][2]) - float(pp[1][2]):.5f}",
@@ -80,8 +95,104 @@ def summarise(run):
     }
 
 
+QUANTITIES = ("c_D", "c_L", "dp", "L_a")
+
+
+def centre(q):
+    return 0.5 * (BOUNDS[q][0] + BOUNDS[q][1])
+
+
+def grid_runs(out):
+    """{forcing: [row, ...]} of the runs <forcing>_dx_<dx> (the grid study), coarse to fine."""
+    by = {}
+    for r in out:
+        tail = r["run"].split("_dx_")[-1]
+        if "_dx_" in r["run"] and all(c in "0123456789." for c in tail):
+            by.setdefault(r["forcing"], []).append(r)
+    for rows in by.values():
+        rows.sort(key=lambda r: -float(r["dx"]))
+    return by
+
+
+def write_convergence(out, path):
+    import math
+    with open(path, "w") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(["forcing", "quantity", "dx", "cells_per_D", "value", "error", "rel_error", "inside_bounds",
+                    "order", "order_richardson", "limit_richardson", "steps", "wall_s", "threads"])
+        for forcing, rows in grid_runs(out).items():
+            for q in QUANTITIES:
+                prev = None
+                vals = []
+                for r in rows:
+                    v = float(r[q])
+                    e = v - centre(q)
+                    order = ""
+                    if prev is not None and e != 0 and prev != 0:
+                        order = f"{math.log2(abs(prev) / abs(e)):.2f}"
+                    inside = BOUNDS[q][0] <= v <= BOUNDS[q][1]
+                    vals.append(v)
+                    rich = lim = ""
+                    if len(vals) >= 3:
+                        d1, d2 = vals[-3] - vals[-2], vals[-2] - vals[-1]
+                        if d1 * d2 > 0 and abs(d1) > abs(d2):  # monotone and converging
+                            pr = math.log2(abs(d1) / abs(d2))
+                            rich, lim = f"{pr:.2f}", f"{v + (vals[-1] - vals[-2]) / (2**pr - 1):.5f}"
+                    w.writerow([forcing, q, r["dx"], round(0.1 / float(r["dx"])), r[q], f"{e:.5f}",
+                                f"{e / centre(q):.4f}", int(inside), order, rich, lim, r["steps"], r["wall_s"],
+                                r["threads"]])
+                    prev = e
+
+
+def plot(out, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 4, figsize=(16, 4))
+    colours = {"diffuse": "tab:blue", "interpolated": "tab:orange", "sharp": "tab:green"}
+    by = grid_runs(out)
+    for ax, q in zip(axes, QUANTITIES):
+        for forcing, rows in by.items():
+            xs = [float(r["wall_s"]) for r in rows]
+            ys = [abs(float(r[q]) - centre(q)) / centre(q) for r in rows]
+            ax.loglog(xs, ys, "o-", color=colours.get(forcing), label=forcing)
+            for r, x, y in zip(rows, xs, ys):
+                ax.annotate(f"{round(0.1 / float(r['dx']))}", (x, y), fontsize=7, xytext=(3, 3),
+                            textcoords="offset points")
+        grid = {id(r) for rows in by.values() for r in rows}
+        for r in out:  # the dt study (and any other run): open markers
+            if id(r) in grid:
+                continue
+            ax.loglog(float(r["wall_s"]), abs(float(r[q]) - centre(q)) / centre(q), "o", mfc="none",
+                      color=colours.get(r["forcing"]))
+        half = 0.5 * (BOUNDS[q][1] - BOUNDS[q][0]) / centre(q)
+        ax.axhline(half, color="grey", ls=":", lw=1)
+        ax.set_title(f"{q}: |error| / reference")
+        ax.set_xlabel("wall time of the run (s)")
+    axes[0].legend(fontsize=8)
+    axes[0].set_ylabel("relative error against the centre of the bounds")
+    fig.suptitle("Cylinder Re 20 (Schafer & Turek 2D-1): accuracy against cost; labels: cells per diameter; "
+                 "open: dt/2, dt/4 on 10 cells per D; dotted: half-width of the bounds", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
 def main():
-    out = [summarise(r) for r in sys.argv[1:]]
+    args = sys.argv[1:]
+    conv = png = None
+    while args and args[0].startswith("--"):
+        if args[0] == "--convergence":
+            conv = args[1]
+        elif args[0] == "--plot":
+            png = args[1]
+        else:
+            sys.exit(f"unknown option {args[0]}")
+        args = args[2:]
+    out = [summarise(r) for r in args]
+    if conv:
+        write_convergence(out, conv)
+    if png:
+        plot(out, png)
     cols = list(out[0].keys())
     w = csv.DictWriter(sys.stdout, fieldnames=cols, lineterminator="\n")
     w.writeheader()

@@ -1,73 +1,86 @@
 #!/usr/bin/env bash
-# Flow past a fixed cylinder at Re = 20 (Schafer & Turek 1996, test 2D-1;
+# Flow past a fixed cylinder at Re = 20 (Schafer & Turek 1996, test 2D-1; 
 # docs/references.md#cylinder-in-a-channel-at-re--20): scenes/cylinder_re20.toml run to its steady state on several
-# grids, then bench/cylinder_summary.py writes results/cylinder_re20.csv (c_D, c_L, Delta p,
-# recirculation length per grid, and the published bounds).
+# grids with each rigid-body forcing (docs/bodies.md), then bench/cylinder_summary.py writes
+# results/cylinder_re20.csv (c_D, c_L, Delta p, recirculation length and the cost of each run:
+# steps, wall time, threads, ms per step; and the published bounds),
+# results/cylinder_re20_convergence.csv (errors per grid and observed orders) and
+# results/figures/cylinder_re20_accuracy_vs_cost.png.
 #
-#   bash bench/run_cylinder.sh                  # dx = 0.01, 0.005, 0.0025 (~15 min, loaded machine)
-#   GRIDS="0.01 0.005" bash bench/run_cylinder.sh
+#   bash bench/run_cylinder.sh                  # 3 forcings x dx = 0.01, 0.005, 0.0025 + dt study
+#   FORCINGS=sharp GRIDS="0.01 0.005" bash bench/run_cylinder.sh
 #
 # Knobs: BIN (refmap executable, default build/refmap), RAW (run directories, default
-# /tmp/refmap_cylinder), GRIDS (dx values among 0.01 0.005 0.0025), THREADS (default 1; the
-# 0.0025 grid uses THREADS_FINE, default 2, with OMP_WAIT_POLICY=PASSIVE: docs/performance.md, threads),
-# VISCOUS ("explicit" or "implicit", default "implicit": on the finer grids the explicit
-# viscous limit rho dx^2 / (6 mu) is below the advective one, see results/validation.md),
-# RADIUS_STUDY (default 1: one extra run on dx = 0.005 with the radius reduced by dx/2, to
-# measure where the diffuse surface of the direct forcing sits), FINE_STEPS (default 2600: the
-# 0.0025 grid stops after 2600 steps, t = 6.03, instead of its steady state near t = 17; on the
-# coarser grids c_D, c_L at t = 6 are within 1e-4 of their steady values. A step count, not an
-# end time: a last step cut short to land on an end time spoils the force and the pressure), DT_STUDY (default 1: the
-# 0.01 grid again at dt / 2 and dt / 4, the forcing's dependence on dt), FORCING ("diffuse" or
-# "interpolated": the cylinder's `forcing`, docs/bodies.md; default: the scene's; the run names
-# get the prefix "$FORCING_"), CSV (default results/cylinder_re20.csv). results/cylinder_re20.csv
-# holds both: the rows of a run with FORCING=diffuse and one with FORCING=interpolated
-# RADIUS_STUDY=0 THREADS_FINE=1, the reference rows once.
+# /tmp/refmap_cylinder), FORCINGS (default "diffuse interpolated sharp"; each run is named
+# <forcing>_dx_<dx>[_dtN]), GRIDS (dx values among 0.01 0.005 0.0025 0.00125), THREADS
+# (default 1; the two finest grids use THREADS_FINE, default 1, with OMP_WAIT_POLICY=PASSIVE:
+# docs/performance.md, threads), VISCOUS ("explicit" or "implicit", default "implicit": on the finer grids the
+# explicit viscous limit rho dx^2 / (6 mu) is below the advective one, see results/validation.md),
+# T_STOP (default 8: every run stops after round(T_STOP / dt) steps instead of at its steady
+# state near t = 17 (steady_tol): c_D moves by less than 1e-5 after t = 8 with every forcing on
+# 10 and 20 cells per diameter, measured; 0 runs to the steady state. A step count, not an end
+# time: a last step cut short to land on an end time spoils the force and the pressure),
+# FINE_STEPS (default 2600: the 0.0025 grid stops after 2600 steps, t = 6.03, c_D within 1e-4 of
+# its steady value on the coarser grids; the 0.00125 grid after 2 FINE_STEPS), DT_STUDY (default 1: the 0.01
+# grid again at dt / 2 and dt / 4 for each forcing), RADIUS_STUDY (default 0; 1: one extra
+# diffuse run on dx = 0.005 with the radius reduced by dx/2, where the diffuse surface sits),
+# REUSE (default 0; 1: keep a run whose directory already holds timings.csv), CSV (default
+# results/cylinder_re20.csv). The summary reads every run directory in RAW, so runs of earlier
+# invocations (other FORCINGS or GRIDS) are summarised with the new ones.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
 BIN="${BIN:-build/refmap}"
 RAW="${RAW:-/tmp/refmap_cylinder}"
-GRIDS="${GRIDS:-0.01 0.005 0.0025}"
+GRIDS="${GRIDS-0.01 0.005 0.0025}"  # GRIDS="" : the dt study only
 VISCOUS="${VISCOUS:-implicit}"
 mkdir -p "$RAW"
 export OMP_WAIT_POLICY=PASSIVE
 
-run() {  # run NAME DX THREADS [extra --set ..., a later time.dt wins]
-  local name=${FORCING:+${FORCING}_}$1 dx=$2 threads=$3
-  shift 3
+run() {  # run FORCING NAME DX THREADS DT [extra --set ..., a later time.max_steps wins]
+  local forcing=$1 name=$1_$2 dx=$3 threads=$4 dt=$5
+  shift 5
+  if [ "${REUSE:-0}" = "1" ] && [ -f "$RAW/$name/timings.csv" ]; then
+    echo "cylinder_re20: $name kept" >&2
+    return
+  fi
   local nx ny
   nx=$(python3 -c "print(round(2.2 / $dx))")
   ny=$(python3 -c "print(round(0.41 / $dx))")
-  dt=$(python3 -c "print(0.9278 * $dx)")  # the scene's dt = 0.9278 dx on every grid
-  local forcing=()
-  [ -n "${FORCING:-}" ] && forcing=(--set "solid[0].forcing=\"$FORCING\"")
-  echo "cylinder_re20: $name (dx = $dx, $nx x $ny, $threads thread(s), viscous = $VISCOUS${FORCING:+, forcing = $FORCING})" >&2
+  local stop=()
+  [ "${T_STOP:-8}" != "0" ] && stop=(--set "time.max_steps=$(python3 -c "print(round(${T_STOP:-8} / $dt))")")
+  echo "cylinder_re20: $name (dx = $dx, $nx x $ny, $threads thread(s), viscous = $VISCOUS, forcing = $forcing)" >&2
+  rm -rf "${RAW:?}/$name"
   OMP_NUM_THREADS=$threads nice "$BIN" run scenes/cylinder_re20.toml --out "$RAW/$name" --quiet \
     --set grid.nx="$nx" --set grid.ny="$ny" --set time.dt="$dt" --set output.vtk=false --set output.diagnostics_every=10 \
-    --set time.viscous="\"$VISCOUS\"" "${forcing[@]}" "$@" > "$RAW/$name.log" 2>&1 || { cat "$RAW/$name.log" >&2; exit 1; }
+    --set time.viscous="\"$VISCOUS\"" --set "solid[0].forcing=\"$forcing\"" "${stop[@]}" "$@" > "$RAW/$name.log" 2>&1 \
+    || { cat "$RAW/$name.log" >&2; exit 1; }
 }
 
-dirs=()
-for dx in $GRIDS; do
-  threads="${THREADS:-1}"
-  extra=()
-  if [ "$dx" = "0.0025" ]; then
-    threads="${THREADS_FINE:-2}"
-    extra=(--set "time.max_steps=${FINE_STEPS:-2600}")
-  fi
-  run "dx_$dx" "$dx" "$threads" "${extra[@]}"
-  dirs+=("$RAW/${FORCING:+${FORCING}_}dx_$dx")
-done
-if [ "${RADIUS_STUDY:-1}" = "1" ]; then
-  run "dx_0.005_r0.0475" 0.005 "${THREADS:-1}" --set 'solid[0].radius=0.0475'
-  dirs+=("$RAW/${FORCING:+${FORCING}_}dx_0.005_r0.0475")
-fi
-if [ "${DT_STUDY:-1}" = "1" ]; then  # the coarse grid at dt / 2 and dt / 4
-  for f in 2 4; do
-    run "dx_0.01_dt$f" 0.01 "${THREADS:-1}" --set "time.dt=$(python3 -c "print(0.009278 / $f)")"
-    dirs+=("$RAW/${FORCING:+${FORCING}_}dx_0.01_dt$f")
+for forcing in ${FORCINGS:-diffuse interpolated sharp}; do
+  for dx in $GRIDS; do
+    threads="${THREADS:-1}"
+    extra=()
+    case "$dx" in
+      0.0025) threads="${THREADS_FINE:-1}"; extra=(--set "time.max_steps=${FINE_STEPS:-2600}") ;;
+      0.00125) threads="${THREADS_FINE:-1}"; extra=(--set "time.max_steps=$((2 * ${FINE_STEPS:-2600}))") ;;
+    esac
+    # the scene's dt = 0.9278 dx on every grid
+    run "$forcing" "dx_$dx" "$dx" "$threads" "$(python3 -c "print(0.9278 * $dx)")" "${extra[@]}"
   done
+  if [ "${DT_STUDY:-1}" = "1" ]; then  # the coarse grid at dt / 2 and dt / 4
+    for f in 2 4; do
+      run "$forcing" "dx_0.01_dt$f" 0.01 "${THREADS:-1}" "$(python3 -c "print(0.009278 / $f)")"
+    done
+  fi
+done
+if [ "${RADIUS_STUDY:-0}" = "1" ]; then
+  run diffuse "dx_0.005_r0.0475" 0.005 "${THREADS:-1}" 0.0046390 --set 'solid[0].radius=0.0475'
 fi
 CSV="${CSV:-results/cylinder_re20.csv}"
-/usr/bin/python3 bench/cylinder_summary.py "${dirs[@]}" > "$CSV"
-cat "$CSV"
+mkdir -p results/figures
+dirs=()
+for d in "$RAW"/*/; do [ -f "$d/timings.csv" ] && dirs+=("${d%/}"); done
+/usr/bin/python3 bench/cylinder_summary.py --convergence "${CSV%.csv}_convergence.csv" \
+  --plot results/figures/cylinder_re20_accuracy_vs_cost.png "${dirs[@]}" > "$CSV"
+cat "$CSV" "${CSV%.csv}_convergence.csv"

@@ -34,8 +34,10 @@ enum class SolidVelocity { Rigid, Fluid };
 enum class SolidMotion { Free, Fixed, Prescribed, Pinned };
 /// SolidSpec::forcing: how a rigid body's velocity is imposed (solver/rigid_body.hpp):
 /// Diffuse, relaxed by the sub-cell fraction chi; Interpolated, sharp (cells inside take the
-/// body's velocity, the fluid cells next to the surface a value interpolated along the normal).
-enum class BodyForcing { Diffuse, Interpolated };
+/// body's velocity, the fluid cells next to the surface a value interpolated along the normal);
+/// Sharp, Interpolated with the cells inside cut out of the pressure solve (their faces carry
+/// the body's velocity and are not corrected).
+enum class BodyForcing { Diffuse, Interpolated, Sharp };
 /// Config::body_force (output.body_force): the force written as solidK_fx, _fy, _torque.
 /// Forcing: a rigid body's, the momentum its direct forcing adds (solver/rigid_body.hpp);
 /// ControlVolume: every body's, from a momentum balance of the fluid around it

@@ -54,7 +54,8 @@ std::span<const OptionName<SolidMotion>> option_names(SolidMotion) {
 
 std::span<const OptionName<BodyForcing>> option_names(BodyForcing) {
   static const OptionName<BodyForcing> n[] = {{BodyForcing::Diffuse, "diffuse"},
-                                              {BodyForcing::Interpolated, "interpolated"}};
+                                              {BodyForcing::Interpolated, "interpolated"},
+                                              {BodyForcing::Sharp, "sharp"}};
   return span_of(n);
 }
 

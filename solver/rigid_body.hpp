@@ -26,6 +26,19 @@
 //    161; Balaras 2004, Comput. Fluids 33): sharp -- cells inside (phi < 0) take u_body +
 //    dt G_c, the fluid cells next to the surface the velocity interpolated along the
 //    normal between the surface and an image point (rigid_body.cpp); no O(dt) slip.
+//  * Sharp forcing (forcing = "sharp", not for a pinned body): the interpolated forcing with
+//    the cells inside (phi < 0) CUT out of the pressure equation. Their faces carry the body's
+//    velocity at the face centre and have beta = 0 and G_f = 0 (no pressure acts across them,
+//    the projection does not correct them), so the flux through the body's staircase surface
+//    is the body's whatever dt, and the inside cells, whose faces are all fixed and exactly
+//    divergence-free for a rigid motion, drop out of the solve. Why: with the other forcings
+//    the cells inside are part of the pressure equation with fixed (forced) velocities, so
+//    the divergence of the forced field is removed by a pressure that scales as 1/dt (the
+//    predictor's Rhie-Chow term is all it can act through), and that pressure leaks into the
+//    flow (the interpolated forcing's Delta p grows as dt falls). The fluid's pressure acts on
+//    the body through the cut faces only: it is added to the force (p of the fluid cell times
+//    the face), and the pressure inside is set from the fluid's at an image point (for output,
+//    probes at the surface and cells a moving body uncovers).
 //  * Force on the body from the fluid (reported as solidK_fx, solidK_fy, solidK_torque):
 //        F = -(1/dt) sum rho (u_new - u_old) dx^2 + (1/dt) Delta sum_R rho (u - dt G_c) dx^2,
 //    the momentum the forcing removes per step plus the change of the momentum of the
@@ -112,12 +125,26 @@ class RigidBodies {
   void place(int k, const std::vector<std::unique_ptr<Solid>>& solids) const;
   /// The direct forcing of every body on the cell velocities (see the header comment);
   /// gxf, gyf: the face accelerations the predictor will use; rho: the new density.
+  /// p_old: the pressure of the last step (forcing = "sharp": its force on the cut faces).
   void force(const std::vector<std::unique_ptr<Solid>>& solids, Field& u, Field& v, const Field& rho,
-             const Field& gxf, const Field& gyf, const Grid& g, double dt);
+             const Field& gxf, const Field& gyf, const Field& p_old, const Grid& g, double dt);
   /// The change over the last step of sum rho (u - dt G_c) dx^2 over the cells body k's
   /// forcing changed (x, y, angular about its reference point): the force is the momentum
   /// the forcing removed plus this, over dt (docs/bodies.md)
   const std::array<double, 3>& region_change(int k) const { return region_change_[std::size_t(k)]; }
+
+  /// forcing = "sharp" (docs/bodies.md): true if a body has it. The faces of its cells
+  /// inside (phi < 0) are CUT: clear_cut_faces zeroes a face field there (the Poisson
+  /// coefficients beta and the face accelerations G_f: no pressure acts across them, the
+  /// projection leaves them alone), impose_cut_faces sets the face velocities to the body's,
+  /// fill_inside_pressure sets the pressure of the cells inside from the fluid's.
+  bool cuts_faces() const;
+  void clear_cut_faces(const std::vector<std::unique_ptr<Solid>>& solids, Field& fx, Field& fy, const Grid& g) const;
+  /// G_f of the cut faces: 0, or the fluid cell's one-sided value (rigid_body.cpp).
+  void cut_face_accel(const std::vector<std::unique_ptr<Solid>>& solids, Field& gx, Field& gy, const Grid& g) const;
+  void impose_cut_faces(const std::vector<std::unique_ptr<Solid>>& solids, Field& uf, Field& vf,
+                        const Grid& g) const;
+  void fill_inside_pressure(const std::vector<std::unique_ptr<Solid>>& solids, Field& p, const Grid& g) const;
 
   void save_state(CheckpointWriter& w) const;
   void load_state(CheckpointReader& r);
@@ -128,6 +155,9 @@ class RigidBodies {
   std::vector<RigidPose> pose_;
   std::vector<BodyLoad> load_;
   double weight(int k, const Solid& s, int i, int j, double inv_dx) const;
+  bool inside(const std::vector<std::unique_ptr<Solid>>& solids, int k, int gi, int gj) const;
+  template <class F>
+  void each_cut_face(const std::vector<std::unique_ptr<Solid>>& solids, const Grid& g, F&& f) const;
   /// region_change of the last step
   std::vector<std::array<double, 3>> region_change_;
   /// u - dt G_c over each body's window after the last forcing (the region's momentum then)

@@ -1072,6 +1072,17 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
       s.fail(*k, "only used with motion = \"" + s.entry(*k).only.front() + "\" (motion is \"" + motion + "\")");
     const bool rigid = sp.rigid();
     if (rigid) sp.forcing = s.option<BodyForcing>("forcing");
+    // "sharp" cuts the inside cells out of the pressure solve: the pressure acts on the body
+    // through its cut faces only, which a pinned body's rotation rate (the angular momentum
+    // of the inside cells) does not see
+    if (rigid && sp.forcing == BodyForcing::Sharp && sp.motion == SolidMotion::Pinned)
+      s.fail("forcing", "\"sharp\" is not offered with motion = \"pinned\" (the pressure torque would not turn "
+                        "it); use \"interpolated\" or \"diffuse\"");
+    // its cut faces are written at the window's unwrapped indices (not yet across a seam)
+    if (rigid && sp.forcing == BodyForcing::Sharp &&
+        (cfg.bc[Left].type == BcType::Periodic || cfg.bc[Bottom].type == BcType::Periodic))
+      s.fail("forcing", "\"sharp\" is not offered in a domain with periodic sides yet; use \"interpolated\" or "
+                        "\"diffuse\"");
     // the point a rigid body's rotation refers to (as for the initial omega)
     const double ccx = sh.kind == ShapeKind::Tabulated ? 0.5 * (bb.xmin + bb.xmax) : sh.cx;
     const double ccy = sh.kind == ShapeKind::Tabulated ? 0.5 * (bb.ymin + bb.ymax) : sh.cy;

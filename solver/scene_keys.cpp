@@ -379,7 +379,9 @@ std::vector<KeyDef> build_keys() {
                                "how a rigid body's velocity is imposed (docs/bodies.md): `\"diffuse\"` relaxes the "
                                "cells by their sub-cell fraction (its surface slips by O(dt)); `\"interpolated\"` is "
                                "sharp: cells inside take the body's velocity, the fluid cells next to the surface the "
-                               "value interpolated along the normal between the surface and an image point"),
+                               "value interpolated along the normal between the surface and an image point; `\"sharp\"` is "
+                               "`\"interpolated\"` with the cells inside cut out of the pressure solve (their faces "
+                               "carry the body's velocity, not corrected by the projection); not for a pinned body"),
            "motion", {"fixed", "prescribed", "pinned"}),
       only(shown_default(key("solid", "path_x", KT::Expression, {}, {},
                              "x of the centre as an expression of t; must equal `center` at the start time"),

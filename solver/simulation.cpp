@@ -45,6 +45,7 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
     jump_y_.resize(nx, ny + 1, ng);
   }
   if (RigidBodies::needed(cfg_)) bodies_ = std::make_unique<RigidBodies>(cfg_);
+  cut_faces_ = bodies_ && bodies_->cuts_faces();
   poisson_ = make_poisson_solver(cfg_.poisson);
   if (cfg_.viscous_time == ViscousTime::Implicit || cfg_.solid_time != SolidStressTime::Explicit) {
     implicit_ = std::make_unique<ImplicitVelocity>(cfg_);
@@ -300,6 +301,7 @@ void Simulation::initialise() {
   gyf_.fill(0.0);
   predict_face_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), uf_.view(), vf_.view(),
                         g.nx, g.ny, 0.0, sides_);
+  if (cut_faces_) bodies_->impose_cut_faces(solids_, uf_, vf_, g);
   face_divergence(uf_.view(), vf_.view(), rhs_.view(), g.nx, g.ny, g.dx, 1.0);
   dp_.fill(0.0);
   last_stats_ = poisson_->solve(rhs_, dp_);
@@ -308,6 +310,7 @@ void Simulation::initialise() {
                         g.ny, g.dx, 1.0, sides_);
   face_accel(dp_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
              g.dx, 0.0, 0.0, cfg_.rho_f, sides_);
+  if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);
   correct_cell_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny, 1.0);
   apply_velocity_bc(u_, v_, t_);
   dp_.fill(0.0);
@@ -320,6 +323,8 @@ void Simulation::apply_velocity_bc(Field& u, Field& v, double t) const {
 void Simulation::build_poisson_coefficients() {
   const Grid& g = cfg_.grid;
   face_beta(rho_.view(), beta_x_.view(), beta_y_.view(), g.nx, g.ny, sides_);
+  // forcing = "sharp": no pressure coupling across the faces of a body's inside cells
+  if (cut_faces_) bodies_->clear_cut_faces(solids_, beta_x_, beta_y_, g);
   poisson_->setup(poisson_operator());
 }
 
@@ -625,7 +630,7 @@ void Simulation::force_bodies(double dt) {
   // step): the forcing aims at u_body + dt G_c so that the predicted face velocities
   // inside a body are its velocity
   ScopedPhase ph(timers_, "bodies");
-  bodies_->force(solids_, u_, v_, rho_, gxf_, gyf_, cfg_.grid, dt);
+  bodies_->force(solids_, u_, v_, rho_, gxf_, gyf_, p_, cfg_.grid, dt);
 }
 
 void Simulation::face_accelerations() {
@@ -638,6 +643,8 @@ void Simulation::face_accelerations() {
   face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
              g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, sides_);
   add_contact_face_accel();
+  // forcing = "sharp": G_f of the cut faces (with beta = 0 there face_accel leaves -g)
+  if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);
   timers_.add("face velocities", std::chrono::duration<double>(PhaseTimers::clock::now() - t0).count(), 0);
 }
 
@@ -649,6 +656,9 @@ void Simulation::predict_face_velocities(double dt) {
   // (G_f from face_accelerations)
   predict_face_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), uf_.view(), vf_.view(),
                         g.nx, g.ny, dt, sides_);
+  // forcing = "sharp": the cut faces carry the body's velocity (beta = 0 there: the
+  // projection keeps it, whatever dt)
+  if (cut_faces_) bodies_->impose_cut_faces(solids_, uf_, vf_, g);
   face_divergence(uf_.view(), vf_.view(), rhs_.view(), g.nx, g.ny, g.dx, 1.0 / dt);
 }
 
@@ -666,6 +676,7 @@ void Simulation::project(double dt) {
   parallel_rows(0, g.ny, g.nx, [&](int j) {
     for (int i = 0; i < g.nx; ++i) p_(i, j) += dp_(i, j);
   });
+  if (cut_faces_) bodies_->fill_inside_pressure(solids_, p_, g);  // cut out of the solve: the fluid's
   fill_scalar_ghosts(p_, cfg_.bc);
   // step 8, eq. (5.6): exactly divergence-free face velocities
   correct_face_velocity(uf_.view(), vf_.view(), dp_.view(), beta_x_.view(), beta_y_.view(),
@@ -674,6 +685,7 @@ void Simulation::project(double dt) {
   face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
              g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, sides_);
   add_contact_face_accel();
+  if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);
   correct_cell_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny, dt);
   apply_velocity_bc(u_, v_, t_ + dt);
 }

@@ -222,6 +222,7 @@ class Simulation {
   bool prescribed_depends_on_time_ = false;  ///< flow = "prescribed" with an expression of t
   std::unique_ptr<Contact> contact_;
   std::unique_ptr<RigidBodies> bodies_;    // null unless a solid is rigid
+  bool cut_faces_ = false;                 // a rigid body with forcing = "sharp" (bodies_->cuts_faces())
   Field cfx_, cfy_;                        // contact force density of the last step
   bool contact_force_written_ = true;      // cfx_/cfy_ may be nonzero (compute_contact_force)
   std::unique_ptr<PoissonSolver> poisson_;
