@@ -53,7 +53,9 @@ Then (--figure yes|only) stability_failures.png: one run just past each limit fo
 (SNAPSHOTS), the state a health check refused (frame_failed.vti) or the frame of the event.
 
 The area drift is that of every solid. Usage: python3 bench/stability.py [--quick] [--bin build/refmap] [--out results] [--jobs 2]
-                                  [--sweeps a,b,c,d,e] [--figure yes|no|only]
+                                  [--sweeps a,b,c,d,e] [--figure yes|no|only] [--charts-only]
+(--charts-only: redraw the charts from <out>/stability.csv and stability_limits.csv, running
+nothing; the solid time-step chart marks the binary's default solids.solid_cfl)
 Writes <out>/stability.csv, <out>/stability_limits.csv, <out>/stability_<sweep>.png and
 <out>/stability_failures.png; the raw
 runs go to <raw> (default /tmp/refmap_stability, not kept).
@@ -504,7 +506,19 @@ def limits(rows):
 COLOURS = {"stable": "tab:green", "inaccurate": "tab:orange", "stopped": "tab:red", "crashed": "black"}
 
 
-def chart(rows, lims, sweep, path, title, xlabel, logx=False, by_value2=False):
+def default_solid_cfl(binary):
+    """The default of solids.solid_cfl, read from the binary's key table (one home:
+    solver/config.hpp), or None if the binary cannot say."""
+    try:
+        out = subprocess.run([binary, "keys"], capture_output=True, text=True, timeout=60).stdout
+    except OSError:
+        return None
+    m = re.search(r"^solids\.solid_cfl\s+\(.*?default ([0-9.eE+-]+)\)", out, re.M)
+    return float(m.group(1)) if m else None
+
+
+def chart(rows, lims, sweep, path, title, xlabel, logx=False, by_value2=False, mark=None):
+    """mark: (x, label) drawn as a vertical line in every panel (the default of the swept key)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -536,6 +550,8 @@ def chart(rows, lims, sweep, path, title, xlabel, logx=False, by_value2=False):
             if lim and lim["limit"] != "none":
                 for x in str(lim["limit"]).split(".."):
                     ax.scatter(float(x), k, marker="s", s=140, facecolors="none", edgecolors="k", zorder=4)
+        if mark is not None:
+            ax.axvline(mark[0], color="tab:blue", lw=1.2, ls="--", zorder=2)
         if logx:
             ax.set_xscale("log")
         ax.set_yticks(range(len(methods)))
@@ -547,6 +563,8 @@ def chart(rows, lims, sweep, path, title, xlabel, logx=False, by_value2=False):
     for o, c in COLOURS.items():
         panels[0][0].scatter([], [], c=c, label=o)
     panels[0][0].scatter([], [], marker="s", facecolors="none", edgecolors="k", label="limit (largest stable)")
+    if mark is not None:
+        panels[0][0].plot([], [], color="tab:blue", lw=1.2, ls="--", label=mark[1])
     fig.legend(loc="lower center", ncol=5, fontsize=7)
     fig.suptitle(title, fontsize=10)
     fig.tight_layout(rect=(0, 0.07, 1, 0.92))
@@ -660,6 +678,45 @@ def failure_figure(binary, raw, out_png, jobs):
         print(f"  snapshot {job['tag']}: exit {job['rc']} {job['stderr'].splitlines()[0][:120] if job['stderr'] else ''}")
 
 
+def write_charts(rows, lims, args):
+    """The charts stability_<sweep>.png from the rows and limits; the solid time-step map marks
+    the default solids.solid_cfl of args.bin."""
+    p_default = default_solid_cfl(args.bin)
+    chart(rows, lims, "a", os.path.join(args.out, "stability_solid_cfl.png"),
+          "solid time-step factor P (dt = P dx / sqrt(2 mu_s/rho_s)), disc_tgv 32^2, 400 steps; semi-implicit: "
+          "dt_max from P\n(small labels: the P actually used where the advective limit binds first)",
+          "P (solids.solid_cfl)", logx=True, by_value2=True,
+          mark=(p_default, f"default solid_cfl = {p_default:g}") if p_default else None)
+    chart(rows, lims, "b", os.path.join(args.out, "stability_deformation.png"),
+          "large deformation: disc_tgv 64^2 to t = 2, flow amplitude raised (labels: largest stretch before failure)",
+          "amplitude / A0 (A0 = 0.1 pi)", logx=True)
+    chart(rows, lims, "c", os.path.join(args.out, "stability_density.png"),
+          "density ratio: disc_tgv 48^2 to t = 1, mu_s/rho_s = 0.5 fixed (stable range boxed at its ends)",
+          "rho_s / rho_f", logx=True)
+    chart(rows, lims, "d", os.path.join(args.out, "stability_contact.png"),
+          "contact: wall_microgravity 48^2 to t = 0.5, solid-solid pair to t = 0.3\n"
+          "(impact speed: largest stable; stiffness: smallest from which all are)",
+          "impact speed V  /  contact.stiffness", logx=True)
+    chart(rows, lims, "e", os.path.join(args.out, "stability_resolution.png"),
+          "resolution: disc_tgv to t = 2, cells across the disc's radius", "R / dx", logx=True)
+
+
+def read_rows(out):
+    """results/stability.csv and stability_limits.csv back as the rows and limits the charts take
+    (numbers where the study wrote numbers)."""
+    def load(name):
+        with open(os.path.join(out, name)) as f:
+            return list(csv.DictReader(l for l in f if not l.startswith("#")))
+    num = lambda v: float(v) if v not in ("", None) else ""
+    rows = load("stability.csv")
+    for r in rows:
+        r["value"], r["value2"] = float(r["value"]), num(r["value2"])
+    lims = load("stability_limits.csv")
+    for l in lims:
+        l["value2"] = num(l["value2"])
+    return rows, lims
+
+
 # ------------------------------------------------------------------ main
 def main():
     ap = argparse.ArgumentParser()
@@ -674,8 +731,14 @@ def main():
     ap.add_argument("--methods", default="",
                     help="comma-separated substrings: run only the methods whose name contains one "
                          "(e.g. 'upper-convected'; merge the rows into results/ by hand)")
+    ap.add_argument("--charts-only", action="store_true",
+                    help="redraw the charts stability_<sweep>.png from <out>/stability.csv and "
+                         "stability_limits.csv, running nothing")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
+    if args.charts_only:
+        write_charts(*read_rows(args.out), args)
+        return
     if args.figure != "no":
         t0 = time.time()
         failure_figure(args.bin, args.raw, os.path.join(args.out, "stability_failures.png"), args.jobs)
@@ -720,22 +783,7 @@ def main():
         w.writeheader()
         for l in lims:
             w.writerow({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in l.items()})
-    chart(rows, lims, "a", os.path.join(args.out, "stability_solid_cfl.png"),
-          "solid time-step factor P (dt = P dx / sqrt(2 mu_s/rho_s)), disc_tgv 32^2, 400 steps; semi-implicit: "
-          "dt_max from P\n(small labels: the P actually used where the advective limit binds first)",
-          "P (solids.solid_cfl)", logx=True, by_value2=True)
-    chart(rows, lims, "b", os.path.join(args.out, "stability_deformation.png"),
-          "large deformation: disc_tgv 64^2 to t = 2, flow amplitude raised (labels: largest stretch before failure)",
-          "amplitude / A0 (A0 = 0.1 pi)", logx=True)
-    chart(rows, lims, "c", os.path.join(args.out, "stability_density.png"),
-          "density ratio: disc_tgv 48^2 to t = 1, mu_s/rho_s = 0.5 fixed (stable range boxed at its ends)",
-          "rho_s / rho_f", logx=True)
-    chart(rows, lims, "d", os.path.join(args.out, "stability_contact.png"),
-          "contact: wall_microgravity 48^2 to t = 0.5, solid-solid pair to t = 0.3\n"
-          "(impact speed: largest stable; stiffness: smallest from which all are)",
-          "impact speed V  /  contact.stiffness", logx=True)
-    chart(rows, lims, "e", os.path.join(args.out, "stability_resolution.png"),
-          "resolution: disc_tgv to t = 2, cells across the disc's radius", "R / dx", logx=True)
+    write_charts(rows, lims, args)
     counts = {o: sum(r["outcome"] == o for r in rows) for o in COLOURS}
     print(f"{len(rows)} runs in {time.time() - t0:.0f} s: {counts}")
     for l in lims:

@@ -29,6 +29,7 @@
 #include "solver/option_names.hpp"
 #include "solver/rigid_body.hpp"
 #include "solver/scene_keys.hpp"
+#include "solver/time_step_limits.hpp"
 
 namespace refmap {
 
@@ -1347,6 +1348,54 @@ void check_start_state(const Ctx& ctx, const Table& top, const Config& cfg) {
     }
 }
 
+/// 7. A fixed time.dt must obey the explicit limits that the adaptive step takes from the
+/// material constants (solver/time_step_limits.hpp, the same formulas Simulation::stable_dt
+/// uses): past the viscous one the explicit viscous term blows up within a few hundred steps
+/// (scenes/cylinder_re20.toml refined to 20 cells per diameter with its step scaled with dx:
+/// dt = 0.0046 against the limit 0.0042, face divergence at t = 0.46), past the solid one
+/// the explicit stress does. The advective and contact limits depend on the flow and are not
+/// known here.
+void check_fixed_step(const Ctx& ctx, const Table& top, const Config& cfg) {
+  if (cfg.dt_fixed <= 0.0 || cfg.flow == FlowMode::Prescribed) return;  // prescribed: no flow solve
+  const double dx = cfg.grid.dx;
+  Table t(ctx, *top.table("time", true), "time", "time");  // time.dt was given
+  const std::string given = fmt_num(cfg.dt_fixed) + " is above the explicit ";
+  if (cfg.viscous_time == ViscousTime::Explicit) {
+    // the largest mu / rho on the grid: the blend of eq. (3.6) is a convex combination where
+    // the solids do not overlap, and the ratio of two convex combinations with the same
+    // weights lies between the pure materials' ratios, so the largest material ratio bounds
+    // it (and is reached wherever that material fills a cell)
+    double nu = cfg.mu_f / cfg.rho_f;
+    std::string whose = "the fluid";
+    for (const SolidSpec& s : cfg.solids)
+      if (s.viscosity / s.density > nu) {
+        nu = s.viscosity / s.density;
+        whose = "solid '" + s.name + "'";
+      }
+    if (nu > 0.0) {
+      const double limit = viscous_dt_limit(cfg.visc_safety, dx, nu);
+      if (cfg.dt_fixed > limit)
+        t.fail("dt", given + "viscous limit " + fmt_num(limit) + " of this scene (time.viscous_safety rho dx^2 / (6 mu) = " +
+                         fmt_num(cfg.visc_safety) + " x " + fmt_num(dx) + "^2 / 6 / " + fmt_num(nu) + ", mu / rho = " +
+                         fmt_num(nu) + " of " + whose + "; it falls with dx^2, so a step scaled with dx crosses it "
+                         "on refinement); lower it, or set time.viscous = \"implicit\" (no viscous limit, docs/implicit.md)");
+    }
+  }
+  if (cfg.solid_time == SolidStressTime::Explicit)
+    for (const SolidSpec& s : cfg.solids) {
+      const double g = rest_wave_modulus(s);
+      if (g <= 0.0) continue;  // a rigid body or a solid without stiffness
+      const double limit = shear_wave_dt_limit(cfg.solid_opt.solid_cfl, dx, g, s.density);
+      if (cfg.dt_fixed > limit)
+        t.fail("dt", given + "solid time-step limit " + fmt_num(limit) + " of solid '" + s.name +
+                         "' (solids.solid_cfl dx sqrt(rho_s / G) = " + fmt_num(cfg.solid_opt.solid_cfl) + " x " +
+                         fmt_num(dx) + " x sqrt(" + fmt_num(s.density) + " / " + fmt_num(g) +
+                         "), G its shear modulus at rest); lower it, or set time.solid_stress = \"semi_implicit\" or "
+                         "\"upper_convected\" (no solid limit, docs/implicit.md), or raise solids.solid_cfl (stiff "
+                         "solids fail from about 0.75, docs/stability.md)");
+    }
+}
+
 /// 6. The memory the run will hold (solver/memory_estimate.hpp) against what the machine
 /// has free: a grid far too large stops here, naming the grid keys.
 void check_memory(const Ctx& ctx, const Table& top, const Config& cfg) {
@@ -1390,6 +1439,7 @@ Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>&
   parse_solids(ctx, top, cfg);
   parse_contact(ctx, top, cfg);  // after parse_solids_options: the range is checked against the band
   check_start_state(ctx, top, cfg);
+  check_fixed_step(ctx, top, cfg);  // after parse_solids: the solids' limits
   check_memory(ctx, top, cfg);
   return cfg;
 }

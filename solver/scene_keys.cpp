@@ -179,7 +179,9 @@ std::vector<KeyDef> build_keys() {
           "advective Courant number: dt (abs(u) + abs(v))_max / dx <= cfl"),
       num("time", "viscous_safety", d.visc_safety, in(0, true, 1, false),
           "fraction of the explicit viscous limit rho dx^2 / (6 mu) (the full-stress operator's stability bound)"),
-      num("time", "dt", d.dt_fixed, ge(0, "0 = adaptive"), "fixed time step if > 0 (0: adaptive from the limits)"),
+      num("time", "dt", d.dt_fixed, ge(0, "0 = adaptive"),
+          "fixed time step if > 0 (0: adaptive from the limits); refused above the explicit viscous limit "
+          "(time.viscous = \"explicit\") or a solid's limit at rest (time.solid_stress = \"explicit\")"),
       shown_default(num("time", "dt_max", d.dt_max, gt(0), "upper bound of the adaptive time step"), "unlimited"),
       integer("time", "max_steps", d.max_steps, ge(0, "0 = unlimited"), "stop after this many steps (0: unlimited)"),
       num("time", "steady_tol", d.steady_tol, ge(0, "0 = off"),
@@ -313,7 +315,8 @@ std::vector<KeyDef> build_keys() {
                      "face values of ξ in its advection (eq. 3.3): second-order central (the paper's) or "
                      "Superbee / van Leer limited upwind"),
       num("solids", "solid_cfl", dso.solid_cfl, in(0, true, 8, false),  // above ~1 only for the stability study (bench/stability.py)
-          "P of the solid time-step limit dt <= P dx / sqrt(2 mu_s / rho_s)"),
+          "P of the solid time-step limit dt <= P dx / sqrt(2 mu_s / rho_s) (explicit stress; a fixed `time.dt` above "
+          "it is refused); stiff solids fail from about 0.75 (docs/stability.md)"),
       boolean("solids", "reinitialise", dso.reinitialise, "reinitialise phi0(xi) by fast marching every step"),
       only(num("solids", "pde_tol", dso.pde_tol, gt(0),
                "stop when the largest change in the band per iteration is below pde_tol times the largest "

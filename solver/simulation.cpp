@@ -19,6 +19,7 @@
 #include "solver/control_volume_forces.hpp"
 #include "solver/expression.hpp"
 #include "solver/markers.hpp"
+#include "solver/time_step_limits.hpp"
 #include "solver/tracers.hpp"
 #include "solver/wall_stress.hpp"
 
@@ -370,11 +371,7 @@ double Simulation::stable_dt() const {
   } else if (umax > 0.0) {
     dt = std::min(dt, cfg_.cfl * g.dx / umax);
   }
-  // viscous: the discrete operator of kernels/viscous.cpp (full stress mu (grad u +
-  // grad u^T), needed for the blended viscosity) has its largest eigenvalue 12 mu/(rho dx^2)
-  // (the checkerboard mode: 8 from the compact normal stress 2 mu u_xx, 4 from mu u_yy),
-  // so forward Euler is stable for dt <= rho dx^2 / (6 mu). The paper's 0.5 rho dx^2 / mu
-  // is the bound of the 1-D Laplacian.
+  // viscous: forward Euler is stable for dt <= rho dx^2 / (6 mu) (solver/time_step_limits.hpp)
   double nu_max = parallel_rows_max(0, g.ny, g.nx, [&](int j) {
     double m = 0.0;
     for (int i = 0; i < g.nx; ++i) m = std::max(m, mu_(i, j) / rho_(i, j));
@@ -383,7 +380,7 @@ double Simulation::stable_dt() const {
   // (no viscous limit with the implicit viscous step, no shear-wave limit with the
   // semi-implicit solid stress: solver/implicit_step.hpp)
   if (nu_max > 0.0 && cfg_.viscous_time == ViscousTime::Explicit)
-    dt = std::min(dt, cfg_.visc_safety * g.dx * g.dx / (6.0 * nu_max));
+    dt = std::min(dt, viscous_dt_limit(cfg_.visc_safety, g.dx, nu_max));
   if (cfg_.solid_time == SolidStressTime::Explicit)
     for (const auto& s : solids_) dt = std::min(dt, s->min_dt());
   else if (cfg_.solid_implicit_cfl > 0.0)  // the implicit stress's own cap (docs/implicit.md)

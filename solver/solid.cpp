@@ -11,6 +11,7 @@
 #include "kernels/rk4.hpp"
 #include "kernels/solid_stress.hpp"
 #include "solver/extrapolation.hpp"
+#include "solver/time_step_limits.hpp"
 
 namespace refmap {
 
@@ -373,19 +374,16 @@ SolidDiagnostics Solid::diagnostics(const Field& u, const Field& v) const {
 
 double Solid::wave_modulus() const {
   if (spec_.mu_s <= 0.0) return 0.0;
-  const double rest = with_constitutive_model(spec_, [](const auto& m) {
-    return m.wave_modulus({1.0, 0.0, 1.0});
-  });
-  return std::max(rest, max_wave_modulus_);
+  return std::max(rest_wave_modulus(spec_), max_wave_modulus_);
 }
 
 double Solid::min_dt(double p) const {
   if (spec_.mu_s <= 0.0) return 1e300;
-  // section 4: dt <= P dx sqrt(rho_s / G), shear-wave speed sqrt(G / rho_s), G = 2 mu_s.
-  // At finite strain the wave speed is sqrt(G_t / rho_s) with the model's tangent shear
-  // modulus G_t (kernels/constitutive.hpp; neo-Hookean: G lambda_max(b)), the largest in the
-  // solid at the last stress evaluation; at rest this is the paper's bound.
-  return p * grid_.dx / std::sqrt(wave_modulus() / spec_.density);
+  // section 4 (solver/time_step_limits.hpp): at finite strain the wave speed is
+  // sqrt(G_t / rho_s) with the model's tangent shear modulus G_t (kernels/constitutive.hpp;
+  // neo-Hookean: G lambda_max(b)), the largest in the solid at the last stress evaluation;
+  // at rest this is the paper's bound, G = 2 mu_s.
+  return shear_wave_dt_limit(p, grid_.dx, wave_modulus(), spec_.density);
 }
 
 std::size_t Solid::storage_bytes() const {

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -167,7 +168,7 @@ start = 0.5
 end = 2
 cfl = 0.8
 viscous_safety = 0.5
-dt = 1e-3
+dt = 5e-4
 dt_max = 0.01
 max_steps = 1000
 steady_tol = 1e-8
@@ -226,7 +227,7 @@ points = 2
   EXPECT_EQ(c.t_end, 2.0);
   EXPECT_EQ(c.cfl, 0.8);
   EXPECT_EQ(c.visc_safety, 0.5);
-  EXPECT_EQ(c.dt_fixed, 1e-3);
+  EXPECT_EQ(c.dt_fixed, 5e-4);  // below the explicit viscous limit 0.5 x 2 x (1/32)^2 / (6 x 0.25) = 6.5e-4
   EXPECT_EQ(c.dt_max, 0.01);
   EXPECT_EQ(c.max_steps, 1000);
   EXPECT_EQ(c.steady_tol, 1e-8);
@@ -780,4 +781,81 @@ TEST_F(SceneFiles, SceneReadmeSolidsExampleLoads) {
   EXPECT_EQ(c.solids[0].name, "disc");
   EXPECT_EQ(c.solids[1].shape.kind, ShapeKind::RoundedRectangle);
   EXPECT_EQ(c.solids[1].omega, 1.0);
+}
+
+// ---------------------------------------------------------------------------------------
+// A fixed time.dt above an explicit limit of its scene is refused at load (issue 26 item 4;
+// solver/scene.cpp, check_fixed_step; the limits' formulas: solver/time_step_limits.hpp).
+// Each limit on both sides: 0.1 % below it loads, 0.1 % above it is refused naming the
+// limit and the key that lifts it.
+
+namespace {
+std::string dt_set(double dt) {
+  char b[64];
+  std::snprintf(b, sizeof b, "time.dt=%.17g", dt);
+  return b;
+}
+}  // namespace
+
+TEST_F(SceneFiles, FixedStepAboveTheExplicitViscousLimitIsRefused) {
+  // kBase: dx = 1/16, rho = 1, mu = 0.01: limit 0.9 dx^2 / (6 mu) = 0.05859375
+  const double limit = 0.9 / 256.0 / 0.06;
+  EXPECT_NO_THROW(load_scene(write(kBase), {dt_set(0.999 * limit)}));
+  const std::string m = error_of(kBase, {dt_set(1.001 * limit)});
+  EXPECT_HAS(m, "time.dt: 0.05865234375 is above the explicit viscous limit 0.05859375 of this scene");
+  EXPECT_HAS(m, "mu / rho = 0.01 of the fluid");
+  EXPECT_HAS(m, "set time.viscous = \"implicit\"");
+  // lifted by the implicit viscous step, moved by viscous_safety
+  EXPECT_NO_THROW(load_scene(write(kBase), {dt_set(1.001 * limit), "time.viscous=\"implicit\""}));
+  EXPECT_NO_THROW(load_scene(write(kBase), {dt_set(1.001 * limit), "time.viscous_safety=0.95"}));
+  // a solid's Kelvin-Voigt viscosity over its density above the fluid's sets it: 0.1 / 2 = 0.05
+  // against 0.01, limit 0.9 dx^2 / (6 x 0.05) = 0.01171875; named
+  // (mu_s = 0: no solid time-step limit)
+  const std::string solid =
+      std::string(kBase) + replace(replace(kOneCircle, "density = 1.0", "density = 2.0\nviscosity = 0.1"), "mu_s = 1.0", "mu_s = 0.0");
+  const double solid_limit = 0.9 / 256.0 / 0.3;
+  EXPECT_NO_THROW(load_scene(write(solid), {dt_set(0.999 * solid_limit)}));
+  EXPECT_HAS(error_of(solid, {dt_set(1.001 * solid_limit)}),
+             "is above the explicit viscous limit 0.01171875 of this scene (time.viscous_safety rho dx^2 / (6 mu) = 0.9 x "
+             "0.0625^2 / 6 / 0.05, mu / rho = 0.05 of solid 'solid0'");
+  // no flow solve, no viscous term: a prescribed flow takes any step
+  EXPECT_NO_THROW(load_scene(write(std::string(kBase) + "[solver]\nflow = \"prescribed\"\n"), {dt_set(10 * limit)}));
+}
+
+TEST_F(SceneFiles, FixedStepAboveTheExplicitSolidLimitIsRefused) {
+  // a disc with mu_s = 1 (G = 2 mu_s = 2 at rest), rho_s = 2 on dx = 1/16: the explicit stress's
+  // limit solid_cfl dx sqrt(rho_s / G) at the default solid_cfl 0.5 is 0.03125 (the viscous
+  // limit, 0.0586, is above)
+  const std::string base = std::string(kBase) + replace(kOneCircle, "density = 1.0", "density = 2.0");
+  const double limit = 0.5 / 16.0;
+  EXPECT_NO_THROW(load_scene(write(base), {dt_set(0.999 * limit)}));
+  const std::string m = error_of(base, {dt_set(1.001 * limit)});
+  EXPECT_HAS(m, "time.dt: 0.03128125 is above the explicit solid time-step limit 0.03125 of solid 'solid0' "
+                "(solids.solid_cfl dx sqrt(rho_s / G) = 0.5 x 0.0625 x sqrt(2 / 2)");
+  EXPECT_HAS(m, "set time.solid_stress = \"semi_implicit\" or \"upper_convected\"");
+  EXPECT_HAS(m, "raise solids.solid_cfl");
+  // lifted by an implicit solid stress, moved by solids.solid_cfl
+  EXPECT_NO_THROW(load_scene(write(base), {dt_set(1.001 * limit), "time.solid_stress=\"semi_implicit\""}));
+  EXPECT_NO_THROW(load_scene(write(base), {dt_set(1.001 * limit), "time.solid_stress=\"upper_convected\""}));
+  EXPECT_NO_THROW(load_scene(write(base), {dt_set(1.001 * limit), "solids.solid_cfl=0.6"}));
+  // a rigid body has no stress and no limit (1.5x: still below the viscous limit 0.0586)
+  EXPECT_NO_THROW(load_scene(write(replace(base, "mu_s = 1.0", "motion = \"fixed\"")), {dt_set(1.5 * limit)}));
+}
+
+TEST_F(SceneFiles, RefinedCylinderWithItsStepScaledByDxIsRefused) {
+  // the issue's case: scenes/cylinder_re20.toml at 20 cells per diameter (dx = 0.005) with
+  // its fixed step scaled with dx, 0.9278 dx = 0.004639, blew up at t = 0.46 (face
+  // divergence, exit 3); the explicit viscous limit there is 0.9 dx^2 / (6 nu) = 0.00375
+  const std::string cyl = std::string(REFMAP_SOURCE_DIR) + "/scenes/cylinder_re20.toml";
+  const std::vector<std::string> fine{"grid.nx=440", "grid.ny=82", "time.dt=0.004639"};
+  try {
+    load_scene(cyl, fine);
+    ADD_FAILURE() << "the refined cylinder with an explicit viscous step above its limit loaded";
+  } catch (const SceneError& e) {
+    EXPECT_HAS(std::string(e.what()), "time.dt: 0.004639 is above the explicit viscous limit 0.00375 of this scene");
+  }
+  std::vector<std::string> implicit = fine;
+  implicit.push_back("time.viscous=\"implicit\"");  // as bench/run_cylinder.sh refines it
+  EXPECT_NO_THROW(load_scene(cyl, implicit));
+  EXPECT_NO_THROW(load_scene(cyl));  // the shipped grid: 0.009278 against the limit 0.015
 }

@@ -228,19 +228,33 @@ TEST_F(Survival, DamagedCheckpointIsRefusedAndNothingChanges) {
 }
 
 TEST_F(Survival, BlowUpIsExit3NamingStepAndTime) {
-  // a stiff disc at 40x the explicit solid time step
+  // a stiff disc (mu_s = 200, c = 20) at the fixed step 0.008 = 7.7 dx / c on 48^2: far past
+  // the stiff solids' limit P = 0.5 (docs/stability.md), allowed at load by solids.solid_cfl
+  // = 8 (a fixed step above solid_cfl dx / c is refused, solver/scene.cpp)
   const fs::path out = dir_ / "blowup";
   const Result r = run({"run", kScenes + "disc_tgv.toml", "--out", out.string(), "--threads", "1", "--quiet", "--set",
-                        "grid.nx=48", "--set", "grid.ny=48", "--set", "time.dt=0.02", "--set", "solids.solid_cfl=2",
+                        "grid.nx=48", "--set", "grid.ny=48", "--set", "time.dt=0.008", "--set", "solids.solid_cfl=8",
                         "--set", "solid[0].mu_s=200", "--set", "time.end=4"},
                        dir_ / "b");
   EXPECT_EQ(r.code, 3) << r.err;
   // caught by the energy check (solver/run.cpp, BlowUpCheck) while the fields are finite
   EXPECT_NE(r.err.find("kinetic energy grew from"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("in one step (step 3, t = 0.06)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("in one step (step 3, t = 0.024)"), std::string::npos) << r.err;
   const std::string diag = slurp(out / "diagnostics.csv");
   ASSERT_FALSE(diag.empty());
   EXPECT_EQ(diag.back(), '\n');
+  // the failing state is written beside the frames (docs/stability.md) and named
+  EXPECT_TRUE(fs::exists(out / "frame_failed.vti"));
+  EXPECT_NE(r.err.find("the failing state: " + (out / "frame_failed.vti").string()), std::string::npos) << r.err;
+  // the same step past the default solid_cfl is refused at load, exit 2, nothing run
+  const Result refused = run({"run", kScenes + "disc_tgv.toml", "--out", (dir_ / "refused").string(), "--threads",
+                              "1", "--quiet", "--set", "grid.nx=48", "--set", "grid.ny=48", "--set", "time.dt=0.008",
+                              "--set", "solid[0].mu_s=200"},
+                             dir_ / "r");
+  EXPECT_EQ(refused.code, 2) << refused.err;
+  EXPECT_NE(refused.err.find("time.dt: 0.008 is above the explicit solid time-step limit"), std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(dir_ / "refused" / "diagnostics.csv"));
 }
 
 namespace {
