@@ -23,13 +23,15 @@
 
 #include "core/field.hpp"
 #include "kernels/control_volume.hpp"
+#include "solver/component.hpp"
 #include "solver/rigid_body.hpp"
 
 namespace refmap {
 
 class Simulation;
 
-class ControlVolumeForces {
+/// A component (solver/component.hpp): begin_step at the step's start, end_step at its end.
+class ControlVolumeForces : public Component {
  public:
   /// Cells between the box and the nearest cell with phi < w_T of a member: the faces of
   /// the surface then have fluid (H = 1) on both sides and in their tangential stencils.
@@ -49,6 +51,13 @@ class ControlVolumeForces {
   void begin_step(const Simulation& sim);
   /// At the end of the step of size dt: the force over it.
   void end_step(const Simulation& sim, double dt);
+
+  // Component
+  const char* name() const override { return "body forces"; }
+  void at(StepPoint p, Simulation& sim, double dt) override {
+    if (p == StepPoint::Begin) begin_step(sim);
+    else end_step(sim, dt);
+  }
 
  private:
   /// the fluid fraction w = 1 - sum_k (1 - H_k) into frac_

@@ -407,6 +407,11 @@ void RigidBodies::each_cut_face(const std::vector<std::unique_ptr<Solid>>& solid
       for (int i = 0; i < s.ni(); ++i) {
         if (!(s.phi()(i, j) < 0.0)) continue;
         const int gi = s.i0() + i, gj = s.j0() + j;
+        // the cut faces are written at unwrapped indices: a body whose inside reaches past a
+        // periodic side (solver/periodic_window.hpp) is not supported by this forcing yet
+        if (gi < 0 || gi >= g.nx || gj < 0 || gj >= g.ny)
+          throw std::runtime_error("solid '" + s.spec().name +
+                                   "': forcing = \"sharp\" does not yet support a body across a periodic side");
         if (gi > 0) f(int(k), 0, gi, gj);
         if (gi + 1 < g.nx) f(int(k), 0, gi + 1, gj);
         if (gj > 0) f(int(k), 1, gi, gj);

@@ -1079,11 +1079,6 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
     if (rigid && sp.forcing == BodyForcing::Sharp && sp.motion == SolidMotion::Pinned)
       s.fail("forcing", "\"sharp\" is not offered with motion = \"pinned\" (the pressure torque would not turn "
                         "it); use \"interpolated\" or \"diffuse\"");
-    // its cut faces are written at the window's unwrapped indices (not yet across a seam)
-    if (rigid && sp.forcing == BodyForcing::Sharp &&
-        (cfg.bc[Left].type == BcType::Periodic || cfg.bc[Bottom].type == BcType::Periodic))
-      s.fail("forcing", "\"sharp\" is not offered in a domain with periodic sides yet; use \"interpolated\" or "
-                        "\"diffuse\"");
     // the point a rigid body's rotation refers to (as for the initial omega)
     const double ccx = sh.kind == ShapeKind::Tabulated ? 0.5 * (bb.xmin + bb.xmax) : sh.cx;
     const double ccy = sh.kind == ShapeKind::Tabulated ? 0.5 * (bb.ymin + bb.ymax) : sh.cy;

@@ -55,8 +55,6 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
   if (cfg_.solid_time == SolidStressTime::UpperConvected)
     for (Field* f : {&qxx_, &qxy_, &qyy_}) f->resize(nx, ny, ng);
   initialise();
-  if (cfg_.body_force == BodyForceEstimator::ControlVolume && !solids_.empty())
-    cv_forces_ = std::make_unique<ControlVolumeForces>(*this);
   if (!solids_.empty()) {
     // velocity scale of the contact pressure (solver/contact.hpp): the largest initial
     // speed on the grid and the free-fall speed over the domain along g
@@ -106,6 +104,8 @@ void Simulation::add_components() {
                                             cfg_.bc[2].type == BcType::Periodic));
   if (auto m = std::make_unique<Markers>(solids_, cfg_.grid); !m->empty()) add_component(std::move(m));
   if (cfg_.wall_stress) add_component(std::make_unique<WallStress>(cfg_));
+  if (cfg_.body_force == BodyForceEstimator::ControlVolume && !solids_.empty() && cfg_.flow == FlowMode::Solve)
+    add_component(std::make_unique<ControlVolumeForces>(*this));
 }
 
 void Simulation::add_component(std::unique_ptr<Component> c) {
@@ -121,6 +121,7 @@ void Simulation::call_components(StepPoint p, double dt) {
 }
 
 const Tracers* Simulation::tracers() const { return component<Tracers>(); }
+const ControlVolumeForces* Simulation::control_volume_forces() const { return component<ControlVolumeForces>(); }
 const Markers* Simulation::markers() const { return component<Markers>(); }
 
 namespace {
@@ -444,7 +445,6 @@ double Simulation::step(double dt) {
 double Simulation::step_state(double dt) {
   if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
   if (cfg_.flow == FlowMode::Prescribed) return step_prescribed(dt);
-  if (cv_forces_) cv_forces_->begin_step(*this);  // the bodies' forces (control_volume_forces.hpp)
   if (!solids_.empty()) {
     rho_old_ = rho_;
     move_solids(dt);                     // steps 1-3
@@ -462,7 +462,6 @@ double Simulation::step_state(double dt) {
   project(dt);                           // steps 7-9
   t_ += dt;
   ++nstep_;
-  if (cv_forces_) cv_forces_->end_step(*this, dt);
   if (contact_) observe_contact();
   return dt;
 }

@@ -97,7 +97,7 @@ class Simulation {
   const RigidBodies* bodies() const { return bodies_.get(); }
   /// Bodies' forces from the fluid's momentum balance (output.body_force = "control_volume";
   /// solver/control_volume_forces.hpp), else null.
-  const ControlVolumeForces* control_volume_forces() const { return cv_forces_.get(); }
+  const ControlVolumeForces* control_volume_forces() const;
   /// Total momentum sum rho u dx^2 (x and y).
   std::pair<double, double> momentum() const;
 
@@ -234,7 +234,6 @@ class Simulation {
   std::vector<std::unique_ptr<Component>> components_;
   StateRegistry state_;
   std::function<void(Stage, double)> probe_;  ///< set_stage_probe (empty: none)
-  std::unique_ptr<ControlVolumeForces> cv_forces_;  ///< output.body_force = "control_volume"
 };
 
 }  // namespace refmap

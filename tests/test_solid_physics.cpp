@@ -147,7 +147,7 @@ DiscStats run_disc_tgv(bool conservative, int n, double t_end) {
 /// wavelength) over four periods, t in [0, 4], with the solid limit binding (no fluid, no
 /// viscosity, a slow flow): the largest |E / E0 - 1| over the steps of the
 /// total energy E = kinetic + elastic, which is exactly constant (rho U0^2 / 4 per unit
-/// area, BENCHMARKS.md section 7a).
+/// area, docs/references.md#shear-wave-in-a-neo-hookean-solid).
 double shear_wave_energy_deviation(const std::string& form, std::vector<std::string> extra = {}) {
   extra.insert(extra.end(), {"grid.nx=64", "grid.ny=64", "time.end=4", "solids.stress_discretisation=\"" + form + "\""});
   Config cfg = load_scene(scene_path("shear_wave.toml"), extra);
