@@ -15,5 +15,5 @@ name=$(basename "$scene" .toml)
 py=python3
 if /usr/bin/python3 -c 'import numpy, matplotlib' 2>/dev/null; then py=/usr/bin/python3; fi
 "$py" scenes/plot_run.py "out/$name" --out "out/$name/figures" --count 8
-echo "demo output: $(pwd)/out/$name (VTK frames with $name.pvd for ParaView, diagnostics.csv, events.csv)"
+echo "demo output: $(pwd)/out/$name (VTK frames with $name.pvd for ParaView, diagnostics.csv, solids.csv, events.csv)"
 echo "demo figures: $(pwd)/out/$name/figures"
