@@ -57,13 +57,18 @@ std::string outer_wall_file(double R2, const std::string& tag, double R3 = 0.0) 
 
 }  // namespace
 
-TEST(Bodies, FixedDiscDragIsTheMomentumLost) {
+/// A fixed disc in a periodic box of uniform flow u = 1 (40^2, dt 0.01); `forcing` lines added.
+static Config fixed_disc_in_uniform_flow(const std::string& more) {
   const std::string text =
       box_scene(40, kPeriodic,
                 "[initial]\nvelocity = \"uniform\"\nu = 1.0\nv = 0.0\n[solver]\ntol = 1e-12\n" +
-                    body_toml("post", circle(0.5, 0.5, 0.12), "motion = \"fixed\"\n"),
+                    body_toml("post", circle(0.5, 0.5, 0.12), "motion = \"fixed\"\n" + more),
                 0.01, 1.0);
-  Config cfg = load_scene_string(text, "fixed.toml");
+  return load_scene_string(text, "fixed.toml");
+}
+
+TEST(Bodies, FixedDiscDragIsTheMomentumLost) {
+  Config cfg = fixed_disc_in_uniform_flow("");
   Simulation sim(cfg);
   const SolidDiagnostics d0 = sim.solid_diagnostics()[0];
   double max_rel = 0.0, drag_last = 0.0, max_inside = 0.0;
@@ -146,12 +151,7 @@ TEST(Bodies, ForceOnAShortStepIsThatOfAFullStep) {
 // over steps 30-60 of this impulsively started, decaying flow, where the drag changes by
 // ~1 % per step; the bound is twice that).
 TEST(Bodies, SharpForcingCutFacesCarryTheBodyVelocity) {
-  const std::string text =
-      box_scene(40, kPeriodic,
-                "[initial]\nvelocity = \"uniform\"\nu = 1.0\nv = 0.0\n[solver]\ntol = 1e-12\n" +
-                    body_toml("post", circle(0.5, 0.5, 0.12), "motion = \"fixed\"\nforcing = \"sharp\"\n"),
-                0.01, 1.0);
-  Config cfg = load_scene_string(text, "sharp.toml");
+  Config cfg = fixed_disc_in_uniform_flow("forcing = \"sharp\"\n");
   Simulation sim(cfg);
   double max_cut = 0.0, max_rel = 0.0, max_div = 0.0, drag = 0.0;
   for (int n = 0; n < 60; ++n) {
