@@ -22,6 +22,10 @@ class StateRegistry;
 enum class StepPoint {
   /// Before anything moves; dt is already chosen (the state is that of time t).
   Begin,
+  /// After step 4, eq. (5.1): u(), v() hold u*, rho() rho^{n+1}, the solids xi^{n+1}.
+  Advected,
+  /// After eq. (5.2): u(), v() hold u**, solid_stress_*() the stress the step used.
+  Stressed,
   /// After the step (the state is that of time t + dt, Simulation::time() included).
   End,
 };

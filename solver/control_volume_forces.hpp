@@ -56,7 +56,7 @@ class ControlVolumeForces : public Component {
   const char* name() const override { return "body forces"; }
   void at(StepPoint p, Simulation& sim, double dt) override {
     if (p == StepPoint::Begin) begin_step(sim);
-    else end_step(sim, dt);
+    if (p == StepPoint::End) end_step(sim, dt);
   }
 
  private:

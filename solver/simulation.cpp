@@ -100,8 +100,8 @@ void Simulation::add_components() {
   // needs A(t + dt)), then the tracers (the velocity of the step's start), the markers
   if (auto a = ActuatedSolids::from_scene(cfg_)) add_component(std::move(a));
   if (!cfg_.tracers.empty())
-    add_component(std::make_unique<Tracers>(cfg_.grid, tracer_seeds(cfg_.tracers), cfg_.bc[0].type == BcType::Periodic,
-                                            cfg_.bc[2].type == BcType::Periodic));
+    add_component(std::make_unique<Tracers>(cfg_.grid, tracer_seeds(cfg_.tracers), sides_.periodic_x(),
+                                            sides_.periodic_y()));
   if (auto m = std::make_unique<Markers>(solids_, cfg_.grid); !m->empty()) add_component(std::move(m));
   if (cfg_.wall_stress) add_component(std::make_unique<WallStress>(cfg_));
   if (cfg_.body_force == BodyForceEstimator::ControlVolume && !solids_.empty() && cfg_.flow == FlowMode::Solve)
@@ -118,6 +118,27 @@ void Simulation::call_components(StepPoint p, double dt) {
     ScopedPhase ph(timers_, c->name());
     c->at(p, *this, dt);
   }
+}
+
+namespace {
+
+/// set_stage_probe's function as a component, called at the two points inside the step.
+class StageProbe : public Component {
+ public:
+  explicit StageProbe(std::function<void(StepPoint, double)> f) : f_(std::move(f)) {}
+  const char* name() const override { return "stage probe"; }
+  void at(StepPoint p, Simulation&, double dt) override {
+    if (p == StepPoint::Advected || p == StepPoint::Stressed) f_(p, dt);
+  }
+
+ private:
+  std::function<void(StepPoint, double)> f_;
+};
+
+}  // namespace
+
+void Simulation::set_stage_probe(std::function<void(Stage, double dt)> probe) {
+  add_component(std::make_unique<StageProbe>(std::move(probe)));
 }
 
 const Tracers* Simulation::tracers() const { return component<Tracers>(); }
@@ -450,9 +471,9 @@ double Simulation::step_state(double dt) {
     move_solids(dt);                     // steps 1-3
   }
   advect_momentum(dt);                   // step 4
-  if (probe_) probe_(Stage::Advected, dt);
+  call_components(StepPoint::Advected, dt);
   apply_viscous_and_solid_stress(dt);
-  if (probe_) probe_(Stage::Stressed, dt);
+  call_components(StepPoint::Stressed, dt);
   if (!solids_.empty()) setup_poisson();
   if (contact_ && contact_->force_enabled()) compute_contact_force();
   face_accelerations();                  // step 5's G_f, eq. (5.3)

@@ -127,12 +127,10 @@ class Simulation {
   void apply_velocity_bc(Field& u, Field& v, double t) const;
 
   /// Inside step(), for probes that need the split step's intermediate velocities (the
-  /// energy budget of bench/energy_budget/energy_budget.cpp, docs/implicit.md); none by default.
-  enum class Stage {
-    Advected,  ///< after step 4: u(), v() hold u*, rho() rho^{n+1}, the solids xi^{n+1}
-    Stressed   ///< after eq. (5.2): u(), v() hold u**, solid_stress_*() the stress used
-  };
-  void set_stage_probe(std::function<void(Stage, double dt)> probe) { probe_ = std::move(probe); }
+  /// energy budget of bench/energy_budget/energy_budget.cpp, docs/implicit.md): `probe` is
+  /// called at StepPoint::Advected and ::Stressed of every step, as a component.
+  using Stage = StepPoint;
+  void set_stage_probe(std::function<void(Stage, double dt)> probe);
   /// The blended mixture viscosity of the current configuration (eq. 3.6).
   const Field& viscosity() const { return mu_; }
 
@@ -233,7 +231,6 @@ class Simulation {
   PhaseTimers timers_;
   std::vector<std::unique_ptr<Component>> components_;
   StateRegistry state_;
-  std::function<void(Stage, double)> probe_;  ///< set_stage_probe (empty: none)
 };
 
 }  // namespace refmap

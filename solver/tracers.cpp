@@ -98,7 +98,7 @@ void Tracers::at(StepPoint p, Simulation& sim, double dt) {
     u0_ = sim.u();
     v0_ = sim.v();
     sim.apply_velocity_bc(u0_, v0_, sim.time());
-  } else {
+  } else if (p == StepPoint::End) {
     u1_ = sim.u();
     v1_ = sim.v();
     sim.apply_velocity_bc(u1_, v1_, sim.time());

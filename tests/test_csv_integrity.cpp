@@ -32,6 +32,30 @@ struct FileSizeLimit {
   ~FileSizeLimit() { setrlimit(RLIMIT_FSIZE, &old); }
 };
 
+/// The text of a CSV file after a full disk: it must end on a newline; returns its data
+/// lines (not the '#' comment, not the header, which starts with `header`), each checked
+/// to hold `commas` commas (a whole row).
+long whole_data_lines(const fs::path& f, char header, long commas, std::string* text_out = nullptr) {
+  std::ifstream in(f);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  EXPECT_FALSE(text.empty());
+  if (!text.empty()) {
+    EXPECT_EQ(text.back(), '\n') << "the file ends inside a row";
+  }
+  std::istringstream lines(text);
+  std::string line;
+  long data = 0;
+  while (std::getline(lines, line)) {
+    if (line.empty() || line[0] == '#' || line[0] == header) continue;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), commas) << line;
+    ++data;
+  }
+  if (text_out) *text_out = text;
+  return data;
+}
+
 }  // namespace
 
 TEST(CsvIntegrity, FullDiskLeavesWholeRows) {
@@ -53,22 +77,10 @@ TEST(CsvIntegrity, FullDiskLeavesWholeRows) {
   }
   ASSERT_FALSE(error.empty()) << "the file size limit was never reached";
   EXPECT_NE(error.find("last whole row"), std::string::npos) << error;
-  std::ifstream in(f);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
-  ASSERT_FALSE(text.empty());
-  EXPECT_EQ(text.back(), '\n') << "the file ends inside a row";
-  EXPECT_LE(text.size(), 1000u);
   // every data line is whole: 8 fields
-  std::istringstream lines(text);
-  std::string line;
-  long data = 0;
-  while (std::getline(lines, line)) {
-    if (line.empty() || line[0] == '#' || line[0] == 'a') continue;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 7) << line;
-    ++data;
-  }
+  std::string text;
+  const long data = whole_data_lines(f, 'a', 7, &text);
+  EXPECT_LE(text.size(), 1000u);
   EXPECT_GT(data, 3);
   EXPECT_LT(data, rows_given + 1);
   fs::remove(f);
@@ -97,20 +109,7 @@ TEST(CsvIntegrity, FullDiskLeavesWholeBlocks) {
     }
   }
   ASSERT_FALSE(error.empty()) << "the file size limit was never reached";
-  std::ifstream in(f);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
-  ASSERT_FALSE(text.empty());
-  EXPECT_EQ(text.back(), '\n');
-  std::istringstream lines(text);
-  std::string line;
-  long data = 0;
-  while (std::getline(lines, line)) {
-    if (line.empty() || line[0] == '#' || line[0] == 's') continue;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 4) << line;
-    ++data;
-  }
+  const long data = whole_data_lines(f, 's', 4);
   EXPECT_GT(data, 3);
   EXPECT_EQ(data % 3, 0) << "the file ends inside a block: " << data << " rows";
   fs::remove(f);
