@@ -18,7 +18,7 @@ echo "scene,solids,nx,ny,threads,timed_steps,us_per_cell_step,solid_share,contac
 for scene in many_discs_1_1024 many_discs_1000; do
   load=$(cut -d' ' -f1 /proc/loadavg)
   OMP_NUM_THREADS=$threads /usr/bin/time -v "$bin" run "bench/scenes/$scene.toml" --out "$raw/$scene" \
-    --threads "$threads" --timing-warmup "$warm" --set time.max_steps=$((steps + warm)) \
+    --threads "$threads" --fixed-threads --timing-warmup "$warm" --set time.max_steps=$((steps + warm)) \
     --set output.vtk=false > "$raw/$scene.log" 2> "$raw/$scene.time"
   t="$raw/$scene/timings.csv"
   key() { grep "^# $1:" "$t" | cut -d: -f2 | tr -d ' '; }

@@ -85,7 +85,7 @@ part_end() {
 run() {
   local dir="$1" t="$2" scene="$3"; shift 3
   rm -rf "$dir"
-  OMP_NUM_THREADS="$t" "$BIN" run "$scene" --out "$dir" --threads "$t" --quiet "$@"
+  OMP_NUM_THREADS="$t" "$BIN" run "$scene" --out "$dir" --threads "$t" --fixed-threads --quiet "$@"
 }
 
 # ---------------------------------------------------------------- 1. scene costs

@@ -45,8 +45,9 @@ namespace refmap {
 /// woken, ~10-20 us) only from ~250k. 16384 (128^2) sits between the two kernel kinds and
 /// keeps the former multigrid per-level threshold.
 inline constexpr std::size_t kMinParallelCells = 16384;
-/// The same when waiting threads sleep (OMP_WAIT_POLICY=passive, refmap's default since
-/// solver/main.cpp sets it): every region then wakes its partner (~10-20 us), so small
+/// The same when waiting threads sleep (OMP_WAIT_POLICY=passive, the user's choice; refmap
+/// keeps libgomp's spinning default and shrinks its team beside busy processes instead,
+/// solver/thread_governor.hpp): every region then wakes its partner (~10-20 us), so small
 /// grids (two_solids_tgv's 128^2) ran slower on 2 threads than on 1 (results/threads.md,
 /// "Threads across solids"); 256^2 and larger grids keep their row threading.
 inline constexpr std::size_t kMinParallelCellsPassive = 65536;

@@ -1,9 +1,9 @@
 // refmap command line:
 //
-//   refmap run SCENE.toml [--out DIR] [--threads N] [--set key=value ...] [--quiet]
-//              [--timing-warmup N]
+//   refmap run SCENE.toml [--out DIR] [--threads N] [--fixed-threads] [--set key=value ...]
+//              [--quiet] [--timing-warmup N]
 //   refmap keys [--markdown]      (the scene-key reference, from solver/scene_keys.cpp)
-//   refmap resume DIR [--threads N] [--quiet]
+//   refmap resume DIR [--threads N] [--fixed-threads] [--quiet]
 //   refmap keys [--markdown]
 //   refmap --help | refmap run --help | refmap --version
 //
@@ -131,6 +131,7 @@ void write_timings_csv(const fs::path& dir, const refmap::Simulation& sim, const
     << "# scene: " << c.name << "\n# nx: " << c.grid.nx << "\n# ny: " << c.grid.ny << "\n# threads: " << nthreads
     << "\n# steps: " << s.steps << "\n# warmup_steps: " << warmup << "\n# timed_steps: " << s.timed_steps
     << "\n# timed_wall_s: " << s.timed_wall_s << "\n# wall_s: " << s.wall_s << "\n# solids: " << sim.solids().size()
+    << "\n# thread_switches: " << s.thread_switches << "\n# min_threads: " << s.min_threads
     << "\n# solid_window_cells: " << window_cells << "\n# solid_storage_bytes: " << bytes << "\n";
   sim.timers().write_csv(o, s.timed_wall_s);
   std::ofstream f(dir / "timings.csv", std::ios::trunc);
@@ -167,7 +168,7 @@ refmap::RunOptions checkpointed(const std::string& text, const std::string& path
 
 /// Runs sim (fresh or resumed) into dir and reports: the part `run` and `resume` share.
 int execute(refmap::Simulation& sim, const fs::path& dir, refmap::RunOptions ro, int nthreads, long warmup,
-            bool quiet) {
+            bool quiet, bool fixed_threads) {
   const refmap::Config& cfg = sim.config();
   if (!quiet) {
     std::printf("memory: about %s\n",
@@ -178,6 +179,7 @@ int execute(refmap::Simulation& sim, const fs::path& dir, refmap::RunOptions ro,
   ro.progress = !quiet;
   ro.quiet = quiet;
   ro.timing_warmup_steps = warmup;
+  ro.govern_threads = !fixed_threads;
   refmap::install_stop_handlers();
   const refmap::RunSummary s = refmap::run(sim, ro);
 
@@ -202,6 +204,10 @@ int execute(refmap::Simulation& sim, const fs::path& dir, refmap::RunOptions ro,
   if (!quiet) {
     std::printf("\nfinished: %ld steps, simulated time %.10g, wall %.3f s%s\n", s.steps, s.t_end, s.wall_s,
                 s.steady ? " (steady state reached)" : "");
+    if (s.thread_switches > 0)
+      std::printf("threads: %d, down to %d while other processes used the cores (%d changes; --fixed-threads "
+                  "keeps the team)\n",
+                  nthreads, s.min_threads, s.thread_switches);
     print_outputs(dir);
     std::printf("\n");
     std::ostringstream table;
@@ -254,7 +260,7 @@ bool make_output_dir(const std::string& out, fs::path& dir, std::string& why) {
   return true;
 }
 
-int cmd_run(const std::string& scene, std::string out, int threads, bool threads_given,
+int cmd_run(const std::string& scene, std::string out, int threads, bool threads_given, bool fixed_threads,
             const std::vector<std::string>& sets, bool quiet, long warmup, double ck_minutes) {
   if (threads_given && threads < 1) return error("--threads must be >= 1, got " + std::to_string(threads), kExitUsage);
   if (warmup < 0) return error("--timing-warmup must be >= 0, got " + std::to_string(warmup), kExitUsage);
@@ -283,10 +289,11 @@ int cmd_run(const std::string& scene, std::string out, int threads, bool threads
   refmap::Simulation sim(cfg);
   const refmap::RunOptions ro =
       checkpointed(read_text(scene), fs::absolute(scene).lexically_normal().string(), sets, ck_minutes);
-  return execute(sim, dir, ro, nthreads, warmup, quiet);
+  return execute(sim, dir, ro, nthreads, warmup, quiet, fixed_threads);
 }
 
-int cmd_resume(const std::string& out, int threads, bool threads_given, bool quiet, double ck_minutes) {
+int cmd_resume(const std::string& out, int threads, bool threads_given, bool fixed_threads, bool quiet,
+               double ck_minutes) {
   if (threads_given && threads < 1) return error("--threads must be >= 1, got " + std::to_string(threads), kExitUsage);
   const fs::path dir = fs::absolute(out).lexically_normal();
   const std::string path = (dir / "checkpoint.bin").string();
@@ -310,35 +317,15 @@ int cmd_resume(const std::string& out, int threads, bool threads_given, bool qui
     }
     refmap::RunOptions ro = checkpointed(sc.text, sc.path, sc.sets, ck_minutes);
     ro.resume = &r;
-    return execute(sim, dir, ro, nthreads, 0, quiet);
+    return execute(sim, dir, ro, nthreads, 0, quiet, fixed_threads);
   } catch (const refmap::CheckpointError& e) {
     return error(std::string(e.what()) + " (nothing was changed)", kExitUsage);
   }
 }
 
-/// OpenMP threads wait passively (sleep) at the end of a parallel region unless the user
-/// chose a wait policy (OMP_WAIT_POLICY, or GOMP_SPINCOUNT for libgomp). The default
-/// policy spins: on a shared machine with another busy process a spinning thread keeps
-/// waiting for its descheduled partner at every barrier, and a 2-thread run took 5-30x
-/// the time of a 1-thread run; passive waiting costs a wake-up per region instead
-/// (measurements: results/threads.md, "Threads across solids"; docs/performance.md).
-/// libgomp reads the variable once, when it is loaded, before main: so set it and run the
-/// program again (execv of /proc/self/exe, same arguments); if that fails, go on as is.
-void default_wait_policy(char** argv) {
-#if defined(_OPENMP) && defined(__linux__)
-  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
-  if (setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0) return;
-  execv("/proc/self/exe", argv);
-  unsetenv("OMP_WAIT_POLICY");  // exec failed: libgomp already runs with the default policy
-#else
-  (void)argv;
-#endif
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  default_wait_policy(argv);
   CLI::App app{"refmap " REFMAP_VERSION
                ": incompressible flow with soft solids on one Cartesian grid (reference map technique)",
                "refmap"};
@@ -361,6 +348,11 @@ int main(int argc, char** argv) {
   CLI::Option* threads_opt =
       run->add_option("-j,--threads", threads, "number of OpenMP threads (default: OMP_NUM_THREADS or all cores)")
           ->type_name("N");
+  bool fixed_threads = false;
+  const char* fixed_help =
+      "keep the team at --threads for the whole run (default: drop to the cores other processes leave free "
+      "and return when they are free again; the results are the same bits either way)";
+  run->add_flag("--fixed-threads", fixed_threads, fixed_help);
   run->add_option("-s,--set", sets,
                   "override a scene value, e.g. --set fluid.viscosity=0.001 --set solver.advection=superbee "
                   "(the value is TOML; a bare word is a string); repeatable")
@@ -386,6 +378,7 @@ int main(int argc, char** argv) {
   resume->add_option("dir", resume_dir, "output directory of the run")->required()->type_name("DIR");
   CLI::Option* resume_threads_opt =
       resume->add_option("-j,--threads", threads, "number of OpenMP threads")->type_name("N");
+  resume->add_flag("--fixed-threads", fixed_threads, fixed_help);
   resume->add_flag("-q,--quiet", quiet, "no progress display and no summary");
   resume->add_option("--checkpoint-minutes", ck_minutes, "as for run")->type_name("M")->check(CLI::NonNegativeNumber);
 
@@ -403,8 +396,9 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (run->parsed()) return cmd_run(scene, out, threads, threads_opt->count() > 0, sets, quiet, warmup, ck_minutes);
-    if (resume->parsed()) return cmd_resume(resume_dir, threads, resume_threads_opt->count() > 0, quiet, ck_minutes);
+    if (run->parsed()) return cmd_run(scene, out, threads, threads_opt->count() > 0, fixed_threads, sets, quiet, warmup, ck_minutes);
+    if (resume->parsed()) return cmd_resume(resume_dir, threads, resume_threads_opt->count() > 0, fixed_threads, quiet,
+                                                ck_minutes);
     if (keys->parsed()) {
       std::cout << (markdown ? refmap::scene_keys_markdown() : refmap::scene_keys_text());
       return 0;

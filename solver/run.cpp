@@ -1,5 +1,7 @@
 #include "solver/run.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -22,6 +24,7 @@
 #include "solver/schedule.hpp"
 #include "solver/step_landing.hpp"
 #include "solver/stop_signal.hpp"
+#include "solver/thread_governor.hpp"
 #include "solver/tracers.hpp"
 #include "solver/vtk.hpp"
 
@@ -443,6 +446,8 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
     sum.failed = true;
     sum.failure = what;
   };
+  const int team0 = omp_get_max_threads();
+  ThreadGovernor governor(team0, opt.govern_threads);
   while (sim.time() < cfg.t_end - eps_t) {
     if (opt.timing_warmup_steps > 0 && sim.steps() == opt.timing_warmup_steps) {
       sim.timers().reset();
@@ -468,6 +473,7 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
       break;
     }
     last_dt = dt;
+    governor.after_step();
 
     try {
       std::string bad;
@@ -530,6 +536,9 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
   sum.wall_s = wall_seconds_since(wall0);
   sum.timed_steps = sim.steps() - timed_step0;
   sum.timed_wall_s = wall_seconds_since(timed0);
+  sum.thread_switches = governor.switches();
+  sum.min_threads = opt.govern_threads ? governor.min_threads() : 0;
+  if (governor.switches() > 0) omp_set_num_threads(team0);  // the caller's team again
   return sum;
 }
 

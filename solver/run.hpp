@@ -23,6 +23,9 @@ struct RunOptions {
   /// Resuming: the checkpoint, read up to the run's own records (the Simulation has
   /// loaded its state from it); the output directory's files are continued, not replaced.
   CheckpointReader* resume = nullptr;
+  /// Let the team size follow what other processes leave free (solver/thread_governor.hpp);
+  /// the command line sets it, tests and benchmarks keep their fixed team.
+  bool govern_threads = false;
 
   /// No output directory, no progress, no summary (tests, benchmarks).
   static RunOptions silent() {
@@ -45,6 +48,8 @@ struct RunSummary {
   std::string failed_frame;     ///< frame_failed.vti of the state a health check refused ("" if none)
   int signal = 0;               ///< stopped by this signal (SIGINT, SIGTERM) after a clean checkpoint
   std::string checkpoint;       ///< the last checkpoint written ("" if none)
+  int thread_switches = 0;      ///< team size changes by the thread governor
+  int min_threads = 0;          ///< smallest team used (0: not governed)
 };
 
 /// The records of a checkpoint before the Simulation's state: the scene to rebuild it from.

@@ -16,6 +16,7 @@
 #include "solver/scene.hpp"
 #include "solver/simulation.hpp"
 #include "solver/solid.hpp"
+#include "solver/thread_governor.hpp"
 #include "test_helpers.hpp"
 
 namespace refmap {
@@ -40,11 +41,16 @@ struct SimState {
   double t = 0.0;
 };
 
-SimState run_two_solids(int threads, int steps) {
-  omp_set_num_threads(threads);
+/// team(n): the team size of step n (the thread governor changes it between steps).
+template <class Team>
+SimState run_two_solids(Team team, int steps) {
+  omp_set_num_threads(team(0));
   Config cfg = load_scene(scene_path("two_solids_tgv.toml"));
   Simulation sim(cfg);
-  for (int n = 0; n < steps; ++n) sim.step();
+  for (int n = 0; n < steps; ++n) {
+    omp_set_num_threads(team(n));
+    sim.step();
+  }
   SimState s;
   s.t = sim.time();
   s.fields = {copy(sim.u()), copy(sim.v()), copy(sim.p())};
@@ -61,14 +67,46 @@ SimState run_two_solids(int threads, int steps) {
 TEST(Threads, SolidScene128SameBitsOnOneAndTwoThreads) {
   if (omp_get_num_procs() < 2) GTEST_SKIP() << "needs 2 processors";
   ThreadsGuard guard;
-  const SimState a = run_two_solids(1, 40);
-  const SimState b = run_two_solids(2, 40);
+  const SimState a = run_two_solids([](int) { return 1; }, 40);
+  const SimState b = run_two_solids([](int) { return 2; }, 40);
   ASSERT_EQ(a.fields.size(), 7u);
   ASSERT_EQ(a.fields.size(), b.fields.size());
   EXPECT_EQ(a.t, b.t);
   const char* names[] = {"u", "v", "p", "xi_x[0]", "xi_y[0]", "xi_x[1]", "xi_y[1]"};
   for (std::size_t k = 0; k < a.fields.size(); ++k)
     EXPECT_TRUE(same_bits(a.fields[k], b.fields[k])) << names[k] << " differs";
+}
+
+// The thread governor (solver/thread_governor.hpp) changes the team size between steps of
+// a run; the run must still be the same bits as one on a fixed team. Team sizes 2, 2, 1,
+// 2, 1, 1, ... (a pattern that switches in both directions, also between equal sizes) for
+// 40 steps against 1 thread throughout.
+TEST(Threads, TeamSizeChangedBetweenStepsKeepsTheBits) {
+  if (omp_get_num_procs() < 2) GTEST_SKIP() << "needs 2 processors";
+  ThreadsGuard guard;
+  const SimState a = run_two_solids([](int) { return 1; }, 40);
+  const SimState b = run_two_solids([](int n) { return (n * 7 / 3) % 2 == 0 ? 2 : 1; }, 40);
+  ASSERT_EQ(a.fields.size(), b.fields.size());
+  EXPECT_EQ(a.t, b.t);
+  for (std::size_t k = 0; k < a.fields.size(); ++k) EXPECT_TRUE(same_bits(a.fields[k], b.fields[k])) << k;
+}
+
+// The governor's rule on a 2-core machine: a neighbour taking more than 0.3 of a core
+// (measured 0.39-0.71 beside one busy process while 2 spinning threads compete with it)
+// drops the team to 1; it returns to 2 only when the neighbour uses less than 0.15 of a
+// core (hysteresis); never above the requested team, never below 1.
+TEST(ThreadGovernor, TeamFollowsTheCoresOtherProcessesLeave) {
+  EXPECT_EQ(governed_threads(2, 2, 2, 0.0), 2);
+  EXPECT_EQ(governed_threads(2, 2, 2, 0.25), 2);
+  EXPECT_EQ(governed_threads(2, 2, 2, 0.35), 1);
+  EXPECT_EQ(governed_threads(2, 2, 2, 0.97), 1);
+  EXPECT_EQ(governed_threads(1, 2, 2, 0.97), 1);
+  EXPECT_EQ(governed_threads(1, 2, 2, 0.20), 1);  // inside the hysteresis band
+  EXPECT_EQ(governed_threads(1, 2, 2, 0.10), 2);
+  EXPECT_EQ(governed_threads(1, 2, 2, 3.00), 1);  // never below 1
+  EXPECT_EQ(governed_threads(2, 2, 8, 0.0), 2);   // never above the requested team
+  EXPECT_EQ(governed_threads(8, 8, 8, 2.6), 5);   // 5.4 cores free
+  EXPECT_EQ(governed_threads(5, 8, 8, 0.0), 8);
 }
 
 // A Poisson solve at 256^2 (density ratio 1000): every recorded residual of the
