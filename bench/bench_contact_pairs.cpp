@@ -1,4 +1,4 @@
-// The broad phase of contact (solver/contact_pairs.hpp): cell lists against the all-pairs
+// The broad phase of contact (solver/model/contact_pairs.hpp): cell lists against the all-pairs
 // loop they replace, on N random boxes of 20-40 cells (discs of ~10 cells' radius with
 // their band, as bench/scenes/many_discs_1000.toml) in a 1024^2 grid with walls.
 #include <benchmark/benchmark.h>
@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "solver/contact_pairs.hpp"
+#include "solver/model/contact_pairs.hpp"
 
 using namespace refmap;
 

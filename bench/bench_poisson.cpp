@@ -68,9 +68,9 @@
 
 #include "bench/bench_counters.hpp"
 #include "kernels/multigrid.hpp"
-#include "solver/poisson.hpp"
-#include "solver/option_names.hpp"
-#include "solver/poisson_multigrid.hpp"
+#include "solver/pressure/poisson.hpp"
+#include "solver/scene/option_names.hpp"
+#include "solver/pressure/poisson_multigrid.hpp"
 #include "tests/fixtures/poisson_problem.hpp"
 
 namespace {
@@ -226,7 +226,7 @@ SolveCache& solve_case(const std::string& method, int n, double ratio,
     PoissonOptions o;
     o.tol = 1e-8;
     o.max_iter = 100000;
-    // "V" / "F": multigrid with that cycle; else a method name (solver/option_names.hpp)
+    // "V" / "F": multigrid with that cycle; else a method name (solver/scene/option_names.hpp)
     if (const auto cycle = parse_option<MgCycle>(method)) {
       o.method = PoissonMethod::Multigrid;
       o.cycle = *cycle;

@@ -33,8 +33,8 @@
 #include <string>
 #include <vector>
 
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 
 namespace {
 

@@ -109,7 +109,7 @@ def soft_disc(args, w):
     res = {}
     for variant, extra in (("explicit", []), ("semi_implicit", SEMI)):
         # to t = 1 of the scene's 8: the automatic contact velocity scale is lx / t_end
-        # without an initial flow (solver/contact.cpp), so keep the full run's 1/8, or the
+        # without an initial flow (solver/model/contact.cpp), so keep the full run's 1/8, or the
         # shorter run's contact limit (8e-4) would set dt for both variants
         info = run(args, "scenes/soft_disc_cavity.toml", "soft_disc_" + variant,
                    ["time.end=1.0", "output.interval=0", "contact.velocity_scale=0.125"] + extra)

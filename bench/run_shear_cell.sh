@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Relative viscosity of a shear cell with one rigid disc pinned at its centre, free to turn
-# (output.wall_stress, solver/wall_stress.hpp): walls at -0.5 / +0.5, periodic along x,
+# (output.wall_stress, solver/components/wall_stress.hpp): walls at -0.5 / +0.5, periodic along x,
 # 2 x 1 cell, nu = 1 (Stokes flow: gamma a^2 / nu <= 0.04), run to t = 1.5 (the start-up
 # decays as e^{-pi^2 t}). Three radii give the walls' confinement, fitted as
 # (eta_r - 1) / phi = c0 + c2 (a/H)^2; c0 is the unconfined dilute coefficient, 2 in

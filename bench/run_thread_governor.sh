@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Two threads against one under the thread governor (solver/thread_governor.hpp) and under
+# Two threads against one under the thread governor (solver/app/thread_governor.hpp) and under
 # the previous default (passive waiting on a fixed team, reproduced with
 # OMP_WAIT_POLICY=PASSIVE --fixed-threads), interleaved: for each repeat, scene, variant
 # and team size one `refmap run`; optionally beside one competing busy process at the same

@@ -508,7 +508,7 @@ COLOURS = {"stable": "tab:green", "inaccurate": "tab:orange", "stopped": "tab:re
 
 def default_solid_cfl(binary):
     """The default of solids.solid_cfl, read from the binary's key table (one home:
-    solver/config.hpp), or None if the binary cannot say."""
+    solver/model/config.hpp), or None if the binary cannot say."""
     try:
         out = subprocess.run([binary, "keys"], capture_output=True, text=True, timeout=60).stdout
     except OSError:
@@ -575,7 +575,7 @@ def chart(rows, lims, sweep, path, title, xlabel, logx=False, by_value2=False, m
 # ------------------------------------------------------------------ snapshots of each failure
 # One run just past each limit the study found (the values are from results/stability_limits.csv),
 # with frames: the panel shows frame_failed.vti if a health check stopped the run (the state it
-# refused, solver/run.cpp), else the frame nearest the event (contact: the smallest gap), else the
+# refused, solver/app/run.cpp), else the frame nearest the event (contact: the smallest gap), else the
 # last frame.
 SNAPSHOTS = [
     ("solid time step: P = 3, mu_s/rho_s = 100,\ncentral xi fluxes (limit P = 1)", "disc_tgv", "a",

@@ -1,5 +1,5 @@
 #pragma once
-// What the projection (kernels/projection.*) and the pressure solvers (solver/poisson_*,
+// What the projection (kernels/projection.*) and the pressure solvers (solver/pressure/poisson_*,
 // kernels/multigrid.*) need to know about each side of the domain: its FaceKind.
 //
 //   Wall      normal face velocity 0, beta_f = 0 on the boundary face, so the pressure
@@ -14,12 +14,12 @@
 //             half a cell, beta_f = 1/rho_P; the face velocity is the cell's (zero normal
 //             derivative) corrected by that gradient. The pressure solvers see it as a
 //             wall plus the cell sink 2 beta_f / dx^2 of the adjacent cells
-//             (solver/poisson.hpp, PoissonOperator::sink; Sides::pressure()).
+//             (solver/pressure/poisson.hpp, PoissonOperator::sink; Sides::pressure()).
 //
 // Every operator treats a side in one `switch` over its kind, with no `default:`, so that
 // adding a kind (e.g. inflow: prescribed normal face velocity; outflow: Dirichlet
 // pressure) makes -Wswitch list every place that needs a case. Sides is built once from
-// the scene's boundary conditions (solver/boundary.hpp: face_sides).
+// the scene's boundary conditions (solver/model/boundary.hpp: face_sides).
 #include <array>
 
 namespace refmap {

@@ -11,8 +11,8 @@
 //                          bounds the time step (section 4); 2 mu_s at rest
 // The kernels are templates on the model, so their inner loops stay inlined and vectorised.
 // Adding a model: one header kernels/constitutive_<name>.hpp, its include, enum value and
-// case below, and its scene value in solver/option_names.cpp (for new constants: SolidSpec
-// fields in solver/config.hpp, their keys in solver/scene_keys.cpp, read in solver/scene.cpp).
+// case below, and its scene value in solver/scene/option_names.cpp (for new constants: SolidSpec
+// fields in solver/model/config.hpp, their keys in solver/scene/scene_keys.cpp, read in solver/scene/scene.cpp).
 #include <concepts>
 #include <utility>
 
@@ -37,7 +37,7 @@ static_assert(ConstitutiveModel<Actuated<NeoHookean>> && ConstitutiveModel<Actua
 enum class ConstitutiveLaw { NeoHookean, StrainStiffening };
 
 /// Calls f(model) with the model of mat.model built from the material constants of `mat`
-/// (a SolidSpec, solver/config.hpp: mu_s, the paper's mu_s and c1 of the stiffening law;
+/// (a SolidSpec, solver/model/config.hpp: mu_s, the paper's mu_s and c1 of the stiffening law;
 /// c3, the stiffening coefficient). The one switch on the law.
 template <class Material, class F>
 decltype(auto) with_constitutive_model(const Material& mat, F&& f) {

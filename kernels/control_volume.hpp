@@ -1,7 +1,7 @@
 #pragma once
 // The two sums of a control-volume momentum balance over a rectangle of whole cells
 // (docs/bodies.md, "Force from a control volume"; the bookkeeping per body is
-// solver/control_volume_forces.hpp). For a control volume V with surface S (outer normal
+// solver/components/control_volume_forces.hpp). For a control volume V with surface S (outer normal
 // n), the momentum equation of the mixture (eq. 2.1 with the blended stress of eq. 3.6)
 // integrated over V gives the force of the fluid on what lies inside as
 //     F = oint_S [(-p I + mu (grad u + grad u^T) + sigma_s) n - rho u (u . n)] dS

@@ -1,13 +1,13 @@
 #pragma once
 // The one interface of the reference-map extrapolation methods (Extrapolator, made by
-// make_extrapolator from the [solids] options; solver/extrapolation.hpp) and the shared types
+// make_extrapolator from the [solids] options; solver/model/extrapolation.hpp) and the shared types
 // of their kernels:
 //   extrapolate_lsq  (kernels/extrapolate_lsq.hpp) - Jain & Mani least-squares plane fits
 //                    (Algorithm 2 of the paper, docs/references.md), the method of the paper;
 //   extrapolate_pde  (kernels/extrapolate_pde.hpp) - Aslam (2004) linear PDE extrapolation,
 //                    the RMT baseline it is compared with.
 // Adding a method: a class deriving from Extrapolator in its own file and one line in
-// make_extrapolator (solver/extrapolation.cpp) plus its name in solver/option_names.cpp.
+// make_extrapolator (solver/model/extrapolation.cpp) plus its name in solver/scene/option_names.cpp.
 //
 // Both work on one solid's WINDOW: window-local arrays of ni x nj cells with ng ghost layers,
 // cell size dx. The kernels treat every cell (i, j) with -ng <= i < ni+ng, -ng <= j < nj+ng

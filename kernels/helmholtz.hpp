@@ -1,10 +1,10 @@
 #pragma once
-// Operator assembly of the implicit velocity step (solver/implicit_step.hpp): for one
+// Operator assembly of the implicit velocity step (solver/model/implicit_step.hpp): for one
 // velocity component w the Helmholtz-type problem
 //
 //     (rho/dt) d - d/dx(a_x m d_x d) - d/dy(a_y m d_y d) = f          (cell P)
 //
-// written in the form of the Poisson "sink" API (solver/poisson.hpp):
+// written in the form of the Poisson "sink" API (solver/pressure/poisson.hpp):
 //
 //     (1/dx^2) sum_f beta_f (d_nb - d_P) - c_P d_P = -f_P,
 //     beta_f = a m_f on interior faces (m_f the mean of the two cells, as in

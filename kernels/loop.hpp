@@ -47,7 +47,7 @@ namespace refmap {
 inline constexpr std::size_t kMinParallelCells = 16384;
 /// The same when waiting threads sleep (OMP_WAIT_POLICY=passive, the user's choice; refmap
 /// keeps libgomp's spinning default and shrinks its team beside busy processes instead,
-/// solver/thread_governor.hpp): every region then wakes its partner (~10-20 us), so small
+/// solver/app/thread_governor.hpp): every region then wakes its partner (~10-20 us), so small
 /// grids (two_solids_tgv's 128^2) ran slower on 2 threads than on 1 (results/threads.md,
 /// "Threads across solids"); 256^2 and larger grids keep their row threading.
 inline constexpr std::size_t kMinParallelCellsPassive = 65536;

@@ -1,13 +1,13 @@
 #pragma once
 // Stateless OpenMP stencil kernels for the matrix-free Poisson solvers
-// (solver/poisson_multigrid.*, solver/poisson_cg.*).
+// (solver/pressure/poisson_multigrid.*, solver/pressure/poisson_cg.*).
 //
 // Every multigrid level is written in cell-integrated (finite-volume) form
 //
 //     (L x)_P = sum_faces T_f (x_nb - x_P),
 //
 // where T_f = beta_f * face_length / centre_distance with lengths in units of the finest
-// cell. On the finest level T = beta and L = dx^2 * A (A the operator of solver/poisson.hpp),
+// cell. On the finest level T = beta and L = dx^2 * A (A the operator of solver/pressure/poisson.hpp),
 // and the right-hand side f is the cell-integrated source dx^2 * rhs. Coarse right-hand
 // sides f_c = P^T r are again cell integrated, so no level carries a 1/h^2 factor.
 // Optional sink (Stencil::c, PoissonOperator::sink): (L x)_P = sum_f T_f (x_nb - x_P) - c_P x_P

@@ -1,5 +1,5 @@
 #pragma once
-// Stateless kernels of the Galerkin multigrid (solver/multigrid_galerkin.*,
+// Stateless kernels of the Galerkin multigrid (solver/pressure/multigrid_galerkin.*,
 // solver.coarse_operator = "galerkin"): 9-point cell-integrated operators on the coarse
 // levels, operator-dependent ("matrix-dependent") prolongation, and the Galerkin product
 // A_c = P^T A_f P.

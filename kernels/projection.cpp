@@ -144,7 +144,7 @@ void predict_face_velocity(CView u, CView v, CView gx_f, CView gy_f, View uf, Vi
 #pragma omp simd
       for (int i = 1; i < nx; ++i) f[i] = 0.5 * (ur[i - 1] + ur[i]) - dt * g[i];
     }
-    // inflow: the ghost makes the mean the prescribed velocity (solver/boundary.hpp);
+    // inflow: the ghost makes the mean the prescribed velocity (solver/model/boundary.hpp);
     // outflow: the ghost is the cell's (zero normal derivative), corrected by the gradient
     switch (sides[Left]) {
       case FaceKind::Wall: uf(0, j) = 0.0; break;

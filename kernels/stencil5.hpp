@@ -1,7 +1,7 @@
 #pragma once
 // The variable-coefficient 5-point Poisson operator, written once. In cell-integrated form
 // (kernels/multigrid.hpp; on the finest level L = dx^2 A, A the operator div(beta grad)
-// of the projection's pressure Poisson equation, solver/poisson.hpp)
+// of the projection's pressure Poisson equation, solver/pressure/poisson.hpp)
 //
 //     (L x)_P = sum_faces T_f (x_nb - x_P),
 //

@@ -1,4 +1,4 @@
-// Actuated solids (kernels/constitutive_actuation.hpp, solver/actuation.hpp):
+// Actuated solids (kernels/constitutive_actuation.hpp, solver/components/actuation.hpp):
 //  - the transform: b_e of grad xi = A^{-1} (the solid already in its actuated shape) is the
 //    identity, so the stress vanishes; without actuation the same kernel arithmetic;
 //  - a free disc in a quiescent viscous fluid whose stress-free shape is stretched by
@@ -11,9 +11,9 @@
 #include <string>
 
 #include "kernels/constitutive.hpp"
-#include "solver/run.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/app/run.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 #include "tests/fixtures/scene_text.hpp"
 
 using namespace refmap;

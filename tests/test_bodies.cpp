@@ -1,4 +1,4 @@
-// Rigid and driven bodies and clamped soft solids (solver/rigid_body.hpp, docs/bodies.md):
+// Rigid and driven bodies and clamped soft solids (solver/model/rigid_body.hpp, docs/bodies.md):
 //  - a fixed disc in a periodic box of uniform flow: it stays put, the velocity inside it
 //    is zero to the forcing's O(dt |grad dp|), and the reported drag is exactly the
 //    momentum the fluid loses (the only momentum sink of a periodic box: with rho_s =
@@ -17,9 +17,9 @@
 #include <sstream>
 
 #include "kernels/solid_stress.hpp"
-#include "solver/control_volume_forces.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/components/control_volume_forces.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 #include "tests/fixtures/scene_text.hpp"
 
 using namespace refmap;
@@ -205,7 +205,7 @@ TEST(Bodies, RotatingDiscCircularCouette) {
       ref = std::max(ref, exact(r));
     }
   const double T = sim.bodies()->load(0).torque;
-  // the same torque from the control volume (solver/control_volume_forces.hpp): the rotor's
+  // the same torque from the control volume (solver/components/control_volume_forces.hpp): the rotor's
   // box (half-width R1 + 3 dx + 2.5 dx = 0.236, corners at r = 0.334 < R2 - 3 dx = 0.353)
   // lies in the annulus' fluid, and in the steady state the torque through any surface
   // around the rotor is the same, the momentum flux adding none (u = u_theta(r) e_theta)
@@ -213,7 +213,7 @@ TEST(Bodies, RotatingDiscCircularCouette) {
   const double T_exact = -4.0 * M_PI * mu * Om * R1 * R1 * R2 * R2 / (R2 * R2 - R1 * R1);
   std::printf("couette %dx%d: max |u_theta - exact| / max exact %.3g, torque %.5g, control volume %.5g (exact %.5g)\n",
               n, n, err / ref, T, T_cv, T_exact);
-  // the forced region ends at phi = dx/2 (solver/rigid_body.cpp): the effective radii are
+  // the forced region ends at phi = dx/2 (solver/model/rigid_body.cpp): the effective radii are
   // known to O(dx) (first order); with R1 = 9.6 dx, R2 - R1 = 16 dx a shift of dx/4 of
   // both is ~ 6% of the velocity and the torque (measured 3.1% and 3.3%)
   EXPECT_LT(err / ref, 0.06);

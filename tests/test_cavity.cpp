@@ -8,10 +8,10 @@
 #include <cstdio>
 #include <vector>
 
-#include "solver/probes.hpp"
-#include "solver/run.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/model/probes.hpp"
+#include "solver/app/run.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 #include "tests/quoted_results.hpp"
 #include "tests/test_helpers.hpp"
 

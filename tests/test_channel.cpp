@@ -16,10 +16,10 @@
 #include <cstdio>
 #include <string>
 
-#include "solver/probes.hpp"
-#include "solver/run.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/model/probes.hpp"
+#include "solver/app/run.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 #include "tests/fixtures/scene_text.hpp"
 #include "tests/test_helpers.hpp"
 

@@ -1,4 +1,4 @@
-// The checkpoint byte format (solver/checkpoint_io.hpp): exact round trip, and every
+// The checkpoint byte format (solver/io/checkpoint_io.hpp): exact round trip, and every
 // damaged file refused with a CheckpointError before any record is handed out.
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 
 #include <unistd.h>
 
-#include "solver/checkpoint_io.hpp"
+#include "solver/io/checkpoint_io.hpp"
 
 namespace fs = std::filesystem;
 using namespace refmap;

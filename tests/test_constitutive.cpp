@@ -14,8 +14,8 @@
 #include "kernels/constitutive.hpp"
 #include "kernels/solid_stress.hpp"
 #include "core/field.hpp"
-#include "solver/scene.hpp"
-#include "solver/solid.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/solid.hpp"
 #include "tests/fixtures/scene_text.hpp"
 
 using namespace refmap;

@@ -1,4 +1,4 @@
-// Solid-solid and solid-wall contact (solver/contact.hpp):
+// Solid-solid and solid-wall contact (solver/model/contact.hpp):
 //  - the pair force is equal and opposite to round-off, so two discs colliding in a
 //    periodic box (rho_s = rho_f) keep the total momentum to round-off;
 //  - the gap diagnostic of two discs / a disc and a wall at known separations is right to
@@ -18,8 +18,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 #include "tests/fixtures/scene_text.hpp"
 #include "tests/test_helpers.hpp"
 
@@ -379,7 +379,7 @@ TEST(ContactScene, KeysAreValidatedWithOneLineErrors) {
 }
 
 // The contact strength, hence the contact limit of the time step, does not depend on the
-// run's length (solver/contact.hpp): a soft disc in a lid-driven box starting from rest (no
+// run's length (solver/model/contact.hpp): a soft disc in a lid-driven box starting from rest (no
 // initial speed, no gravity) took U = l_x / (t_end - t_start), so two runs differing only in
 // time.end had first steps in the ratio of their lengths (here 10: the contact limit is the
 // smallest at end = 1). Now U = 0 in both until the disc moves (no initial speed, no gravity).
@@ -400,7 +400,7 @@ TEST(ContactTimeStep, FirstStepDoesNotDependOnTheEndTime) {
   EXPECT_EQ(U[1], 0.0);
 }
 
-// The spring's time-step limit (solver/contact.hpp) applies only in a step that can bring a
+// The spring's time-step limit (solver/model/contact.hpp) applies only in a step that can bring a
 // surface into the contact range d: far from contact the step is set by the other limits
 // (here the viscous one, 2.3x the spring's), near contact by the spring.
 TEST(ContactTimeStep, SpringLimitOnlyInStepsThatCanCloseAGap) {

@@ -1,4 +1,4 @@
-// The broad phase of contact (solver/contact_pairs.hpp): the cell lists must find exactly
+// The broad phase of contact (solver/model/contact_pairs.hpp): the cell lists must find exactly
 // the pairs of boxes that the all-pairs loop finds, in its order, on random
 // configurations -- walls or periodic sides, boxes of mixed sizes, many touching, some
 // reaching across a periodic side or beyond a wall, one wider than the domain.
@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "solver/contact_pairs.hpp"
+#include "solver/model/contact_pairs.hpp"
 
 using namespace refmap;
 

@@ -1,7 +1,7 @@
-// The contact force is computed as tasks (solver/contact.hpp, THREADS): per pair and per
+// The contact force is computed as tasks (solver/model/contact.hpp, THREADS): per pair and per
 // wall, only over the cells that can contribute, concurrently, then applied in a fixed
 // order. Neither the narrowed cell boxes, nor the number of threads, nor the broad phase
-// (cell lists instead of every pair, solver/contact_pairs.hpp) may change a bit of the
+// (cell lists instead of every pair, solver/model/contact_pairs.hpp) may change a bit of the
 // face forces, of the contact energy, of the gaps or of the contact events.
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -14,10 +14,10 @@
 
 #include <unistd.h>
 
-#include "solver/checkpoint_io.hpp"
-#include "solver/contact.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/io/checkpoint_io.hpp"
+#include "solver/model/contact.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 #include "tests/fixtures/scene_text.hpp"
 
 using namespace refmap;
@@ -111,7 +111,7 @@ std::string random_discs(int n, unsigned seed) {
       c.y = U(rng);
     }
     // clear of the sides by more than the band and 3 cells (a solid may not come nearer a
-    // periodic side, solver/solid.cpp fit_window), apart from the others
+    // periodic side, solver/model/solid.cpp fit_window), apart from the others
     if (c.x - c.r < 0.16 || c.x + c.r > 0.84 || c.y - c.r < 0.16 || c.y + c.r > 0.84) continue;
     bool ok = true;
     for (const D& o : d) ok = ok && std::hypot(c.x - o.x, c.y - o.y) > o.r + c.r;

@@ -14,7 +14,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "solver/csv.hpp"
+#include "solver/io/csv.hpp"
 
 namespace fs = std::filesystem;
 

@@ -17,12 +17,12 @@
 #include <cstdio>
 #include <string>
 
-#include "solver/control_volume_forces.hpp"
-#include "solver/probes.hpp"
-#include "solver/rigid_body.hpp"
-#include "solver/run.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/components/control_volume_forces.hpp"
+#include "solver/model/probes.hpp"
+#include "solver/model/rigid_body.hpp"
+#include "solver/app/run.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 #include "tests/quoted_results.hpp"
 #include "tests/test_helpers.hpp"
 
@@ -64,7 +64,7 @@ TEST(Cylinder, Re20DragAndPressureDifferenceOnCoarseGrid) {
   std::printf("[cylinder] dx = %.4g, %ld steps, t = %.3f: c_D = %.5f (ref %.2f), c_L = %.5f, Delta p = %.5f (ref %.4f)\n",
               cfg.grid.dx, sim.steps(), sim.time(), cd, kCdRef, cl, dp, kDpRef);
   EXPECT_NEAR(cd, kCdRef, kCdTol);
-  // the control-volume force (solver/control_volume_forces.hpp; the state does not depend on
+  // the control-volume force (solver/components/control_volume_forces.hpp; the state does not depend on
   // output.body_force) against the forcing's: in a steady state both are the fluid's force,
   // measured differently (the momentum the forcing removes; the stress and momentum flux on
   // a box 2 cells outside the blend); kCvTolD, kCvTolL above.

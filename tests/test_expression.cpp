@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "solver/expression.hpp"
+#include "solver/model/expression.hpp"
 
 using refmap::Expression;
 

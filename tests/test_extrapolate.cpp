@@ -14,9 +14,9 @@
 
 #include "kernels/extrapolate_lsq.hpp"
 #include "kernels/extrapolate_pde.hpp"
-#include "solver/config.hpp"
-#include "solver/extrapolation.hpp"
-#include "solver/option_names.hpp"
+#include "solver/model/config.hpp"
+#include "solver/model/extrapolation.hpp"
+#include "solver/scene/option_names.hpp"
 #include "core/field.hpp"
 #include "tests/fixtures/zalesak_geometry.hpp"
 

@@ -10,7 +10,7 @@
 
 #include "kernels/fast_marching.hpp"
 #include "core/field.hpp"
-#include "solver/shape.hpp"
+#include "solver/model/shape.hpp"
 
 using namespace refmap;
 

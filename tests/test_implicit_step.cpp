@@ -1,4 +1,4 @@
-// Implicit viscous step and semi-implicit solid stress (solver/implicit_step.hpp,
+// Implicit viscous step and semi-implicit solid stress (solver/model/implicit_step.hpp,
 // docs/implicit.md): an exact decaying shear mode at dt far above the explicit viscous
 // limit and its first order in time (backward Euler); the elastic Couette layer at the
 // advective dt; the finite-amplitude shear wave (docs/references.md#shear-wave-in-a-neo-hookean-solid) beyond the explicit
@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "solver/probes.hpp"
-#include "solver/run.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/model/probes.hpp"
+#include "solver/app/run.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 #include "tests/fixtures/scene_text.hpp"
 #include "tests/fixtures/couette_layer.hpp"
 #include "tests/test_helpers.hpp"
@@ -95,7 +95,7 @@ namespace {
 /// period): the largest |u - u_exact| over the cells divided by U0 = 0.25.
 double shear_wave_error(double dt, const char* solid, Field* u_out = nullptr) {  // 32 x 32
   // solids.solid_cfl = 1: the explicit runs below go up to P = 1 (dt = 1/32), which the load
-  // check refuses at the default P (solver/scene.cpp, check_fixed_step); the implicit stress
+  // check refuses at the default P (solver/scene/scene.cpp, check_fixed_step); the implicit stress
   // has no such limit and ignores it
   Config cfg = load_scene(scene_path("shear_wave.toml"), {"time.dt=" + std::to_string(dt),
                                                           std::string("time.solid_stress=") + solid,

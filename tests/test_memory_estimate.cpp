@@ -1,4 +1,4 @@
-// The memory estimate (solver/memory_estimate.hpp) against what a constructed
+// The memory estimate (solver/scene/memory_estimate.hpp) against what a constructed
 // Simulation really holds: the resident set grows by the estimate within 25% (the
 // estimate counts every array the solver allocates up front; allocations of a few KiB and
 // the Poisson solver's method-dependent vectors are what the margin covers).
@@ -8,9 +8,9 @@
 #include <fstream>
 #include <string>
 
-#include "solver/memory_estimate.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/scene/memory_estimate.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 #include "tests/fixtures/scene_text.hpp"
 
 using namespace refmap;

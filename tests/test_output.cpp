@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "solver/csv.hpp"
+#include "solver/io/csv.hpp"
 #include "core/field.hpp"
 #include "core/grid.hpp"
-#include "solver/probes.hpp"
-#include "solver/progress.hpp"
-#include "solver/vtk.hpp"
+#include "solver/model/probes.hpp"
+#include "solver/app/progress.hpp"
+#include "solver/io/vtk.hpp"
 
 namespace fs = std::filesystem;
 using namespace refmap;

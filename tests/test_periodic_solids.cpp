@@ -1,4 +1,4 @@
-// Solids across periodic sides (issue 27; solver/periodic_window.hpp, docs/reference_map.md
+// Solids across periodic sides (issue 27; solver/model/periodic_window.hpp, docs/reference_map.md
 // "Periodic sides"):
 //  - a soft disc carried once around a fully periodic box by a uniform flow (diagonally, so
 //    it crosses both seams and the corner, where its window is in four pieces) comes back
@@ -20,10 +20,10 @@
 #include <string>
 #include <vector>
 
-#include "solver/contact.hpp"
-#include "solver/rigid_body.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/model/contact.hpp"
+#include "solver/model/rigid_body.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 #include "tests/fixtures/scene_text.hpp"
 
 using namespace refmap;

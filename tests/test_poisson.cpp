@@ -11,12 +11,12 @@
 #include <vector>
 
 #include "kernels/stencil5.hpp"
-#include "solver/poisson.hpp"
-#include "solver/poisson_cg.hpp"
-#include "solver/poisson_multigrid.hpp"
+#include "solver/pressure/poisson.hpp"
+#include "solver/pressure/poisson_cg.hpp"
+#include "solver/pressure/poisson_multigrid.hpp"
 #include "tests/fixtures/fused_passes.hpp"
 #include "tests/fixtures/poisson_problem.hpp"
-#include "solver/option_names.hpp"
+#include "solver/scene/option_names.hpp"
 
 namespace refmap {
 namespace {
@@ -71,7 +71,7 @@ double worst_factor(const std::vector<double>& h) {
 }
 
 // ---------------------------------------------------------------------------------------
-// The names are parsed once, by the scene loader (solver/option_names.hpp); the factory
+// The names are parsed once, by the scene loader (solver/scene/option_names.hpp); the factory
 // takes enums and checks only the numeric options.
 TEST(PoissonFactory, NamesRoundTripAndUnknownNamesAreRejected) {
   EXPECT_FALSE(parse_option<PoissonMethod>("sor"));

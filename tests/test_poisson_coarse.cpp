@@ -1,4 +1,4 @@
-// Multigrid coarse operators (PoissonOptions::coarse_operator, solver/poisson_multigrid.cpp):
+// Multigrid coarse operators (PoissonOptions::coarse_operator, solver/pressure/poisson_multigrid.cpp):
 // "average" (restriction-weighted mean of beta) and "harmonic" (fine faces in series normal
 // to the coarse face, strips in parallel) are both the rediscretised coarse 5-point operator
 // when beta is constant, and "harmonic" is the exact series conductance across layers.
@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "solver/poisson.hpp"
-#include "solver/poisson_multigrid.hpp"
+#include "solver/pressure/poisson.hpp"
+#include "solver/pressure/poisson_multigrid.hpp"
 #include "tests/fixtures/poisson_problem.hpp"
 
 namespace refmap {

@@ -1,5 +1,5 @@
 // The Galerkin coarse operator of the multigrid (solver.coarse_operator = "galerkin",
-// solver/multigrid_galerkin.hpp, kernels/multigrid9.hpp): its coarse stencil against the
+// solver/pressure/multigrid_galerkin.hpp, kernels/multigrid9.hpp): its coarse stencil against the
 // analytic Galerkin stencil of the 5-point Laplacian, its convergence factor at density
 // ratio 1000, and solves of manufactured problems (with and without the sink term).
 #include <gtest/gtest.h>
@@ -8,9 +8,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "solver/poisson.hpp"
-#include "solver/poisson_multigrid.hpp"
-#include "solver/scene.hpp"
+#include "solver/pressure/poisson.hpp"
+#include "solver/pressure/poisson_multigrid.hpp"
+#include "solver/scene/scene.hpp"
 #include "tests/fixtures/fused_passes.hpp"
 #include "tests/fixtures/poisson_problem.hpp"
 #include "tests/fixtures/scene_text.hpp"

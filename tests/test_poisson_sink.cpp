@@ -1,4 +1,4 @@
-// The Poisson sink term (solver/poisson.hpp, PoissonOperator::sink):
+// The Poisson sink term (solver/pressure/poisson.hpp, PoissonOperator::sink):
 //   (1/dx^2) sum_f beta_f (x_nb - x_P) - c_P x_P = rhs_P,
 // checked against manufactured exact solutions (Helmholtz on wall and periodic grids, a
 // Dirichlet side made of a sink), for the V-cycle's convergence factor over four decades of
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/poisson.hpp"
+#include "solver/pressure/poisson.hpp"
 #include "tests/fixtures/poisson_problem.hpp"
 
 namespace refmap {

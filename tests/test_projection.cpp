@@ -1,6 +1,6 @@
 // The boundary treatment of the projection (kernels/projection.hpp) per side kind
 // (kernels/boundary_kind.hpp), and the map from a scene's boundary conditions to those
-// kinds (solver/boundary.hpp: face_sides):
+// kinds (solver/model/boundary.hpp: face_sides):
 //  - wall faces carry no beta, no face acceleration and no normal velocity, before and
 //    after the correction;
 //  - on a periodic direction face n is face 0 (bit for bit) and is computed from the
@@ -17,10 +17,10 @@
 
 #include "kernels/boundary_kind.hpp"
 #include "kernels/projection.hpp"
-#include "solver/boundary.hpp"
+#include "solver/model/boundary.hpp"
 #include "core/field.hpp"
 #include "core/grid.hpp"
-#include "solver/poisson.hpp"
+#include "solver/pressure/poisson.hpp"
 
 using namespace refmap;
 

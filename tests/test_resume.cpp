@@ -1,4 +1,4 @@
-// Checkpoints are built from the state registry (solver/state_registry.hpp): a run stopped
+// Checkpoints are built from the state registry (solver/io/state_registry.hpp): a run stopped
 // after N steps, written to a checkpoint and continued by a new Simulation must give the
 // same bits as the run that never stopped - for every shipped scene and for the implicit
 // variants whose warm-start state was once left out (issue: a resumed turek_hron_fsi2
@@ -14,11 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "solver/checkpoint_io.hpp"
-#include "solver/diagnostics.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
-#include "solver/state_registry.hpp"
+#include "solver/io/checkpoint_io.hpp"
+#include "solver/model/diagnostics.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
+#include "solver/io/state_registry.hpp"
 #include "test_helpers.hpp"
 
 namespace refmap {
@@ -105,7 +105,7 @@ std::vector<Case> cases() {
     if (e.path().extension() == ".toml") names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   for (const auto& n : names) c.push_back({n, {}, n.substr(0, n.size() - 5)});
-  // the implicit velocity step's warm start (solver/implicit_step.hpp) in each form
+  // the implicit velocity step's warm start (solver/model/implicit_step.hpp) in each form
   c.push_back({"couette_elastic.toml", {"time.viscous=implicit"}, "couette_elastic_implicit_viscous"});
   c.push_back({"disc_tgv.toml", {"time.solid_stress=semi_implicit", "grid.nx=64", "grid.ny=64"}, "disc_tgv_semi_implicit"});
   c.push_back({"disc_tgv.toml", {"time.solid_stress=upper_convected", "grid.nx=64", "grid.ny=64"}, "disc_tgv_upper_convected"});

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace fs = std::filesystem;
 using refmap::BcType;
@@ -785,7 +785,7 @@ TEST_F(SceneFiles, SceneReadmeSolidsExampleLoads) {
 
 // ---------------------------------------------------------------------------------------
 // A fixed time.dt above an explicit limit of its scene is refused at load (issue 26 item 4;
-// solver/scene.cpp, check_fixed_step; the limits' formulas: solver/time_step_limits.hpp).
+// solver/scene/scene.cpp, check_fixed_step; the limits' formulas: solver/model/time_step_limits.hpp).
 // Each limit on both sides: 0.1 % below it loads, 0.1 % above it is refused naming the
 // limit and the key that lifts it.
 

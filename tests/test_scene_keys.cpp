@@ -1,4 +1,4 @@
-// The key table of solver/scene_keys.cpp: scenes/README.md holds exactly its generated
+// The key table of solver/scene/scene_keys.cpp: scenes/README.md holds exactly its generated
 // reference, and the loader enforces what the table says (ranges, choices, key lists).
 #include <gtest/gtest.h>
 
@@ -9,10 +9,10 @@
 #include <sstream>
 #include <string>
 
-#include "solver/option_names.hpp"
-#include "solver/scene.hpp"
+#include "solver/scene/option_names.hpp"
+#include "solver/scene/scene.hpp"
 #include "tests/fixtures/scene_text.hpp"
-#include "solver/scene_keys.hpp"
+#include "solver/scene/scene_keys.hpp"
 
 namespace refmap {
 namespace {
@@ -76,7 +76,7 @@ TEST(SceneKeys, ReadmeIsGenerated) {
     return;
   }
   EXPECT_EQ(have, want)
-      << "the key reference in scenes/README.md differs from the key table (solver/scene_keys.cpp). Regenerate "
+      << "the key reference in scenes/README.md differs from the key table (solver/scene/scene_keys.cpp). Regenerate "
          "it: replace the lines between '<!-- keys:begin -->' and '<!-- keys:end -->' by the output of "
          "`build/refmap keys --markdown`, or run this test once with REFMAP_WRITE_README=1 "
          "(build/tests/refmap_tests --gtest_filter=SceneKeys.ReadmeIsGenerated).";

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/shape.hpp"
+#include "solver/model/shape.hpp"
 
 using namespace refmap;
 

@@ -12,8 +12,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 #include "tests/quoted_results.hpp"
 #include "tests/test_helpers.hpp"
 

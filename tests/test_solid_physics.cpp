@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 #include "tests/test_helpers.hpp"
 
 using namespace refmap;

@@ -1,6 +1,6 @@
 // Where methods fail (bench/stability.py maps the limits, results/stability.md
 // "Where methods fail"):
-//  - FoldedMap: the health check that names a folded reference map (solver/health.cpp):
+//  - FoldedMap: the health check that names a folded reference map (solver/model/health.cpp):
 //    one cell of a disc's xi is folded by hand (det grad xi < 0 by the central differences
 //    the stress kernel uses) and the message must name the solid and that global cell;
 //    an unfolded disc passes.
@@ -16,10 +16,10 @@
 #include <cstdio>
 #include <string>
 
-#include "solver/health.hpp"
-#include "solver/run.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/model/health.hpp"
+#include "solver/app/run.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 #include "tests/test_helpers.hpp"
 #include "tests/fixtures/scene_text.hpp"
 

@@ -11,9 +11,9 @@
 
 #include "kernels/solid_stress.hpp"
 #include "kernels/viscous.hpp"
-#include "solver/boundary.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/model/boundary.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 
 namespace refmap {
 namespace {

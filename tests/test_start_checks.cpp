@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "solver/scene.hpp"
+#include "solver/scene/scene.hpp"
 #include "tests/fixtures/scene_text.hpp"
 
 using refmap::load_scene_string;
@@ -81,7 +81,7 @@ TEST(StartChecks, SolidOutsideTheWalls) {
 }
 
 TEST(StartChecks, SolidAcrossAPeriodicSide) {
-  // a disc across a periodic side loads (issue 27: its window wraps, solver/periodic_window.hpp)
+  // a disc across a periodic side loads (issue 27: its window wraps, solver/model/periodic_window.hpp)
   EXPECT_EQ(error_of(scene(kPeriodic, disc("edge", 0.05, 0.5, 0.1))), "");
   EXPECT_EQ(error_of(scene(kPeriodic, disc("corner", 0.0, 1.0, 0.1))), "");
   // with walls on the other sides: across the periodic side yes, across a wall no

@@ -1,7 +1,7 @@
-// The step that lands on a frame or t_end (solver/step_landing.hpp).
+// The step that lands on a frame or t_end (solver/app/step_landing.hpp).
 #include <gtest/gtest.h>
 
-#include "solver/step_landing.hpp"
+#include "solver/app/step_landing.hpp"
 
 namespace refmap {
 namespace {

@@ -1,5 +1,5 @@
-// Runs that survive (the exit-code contract of solver/main.cpp and the checkpoints of
-// solver/checkpoint.cpp), tested on the refmap binary itself, as a user meets them:
+// Runs that survive (the exit-code contract of solver/app/main.cpp and the checkpoints of
+// solver/model/checkpoint.cpp), tested on the refmap binary itself, as a user meets them:
 //  - a run stopped by SIGINT and resumed gives the same diagnostics rows, events, frames
 //    and .pvd series, bit for bit, as the uninterrupted run;
 //  - SIGTERM: exit 143, every output of the state reached written, no temporary left;
@@ -230,14 +230,14 @@ TEST_F(Survival, DamagedCheckpointIsRefusedAndNothingChanges) {
 TEST_F(Survival, BlowUpIsExit3NamingStepAndTime) {
   // a stiff disc (mu_s = 200, c = 20) at the fixed step 0.008 = 7.7 dx / c on 48^2: far past
   // the stiff solids' limit P = 0.5 (docs/stability.md), allowed at load by solids.solid_cfl
-  // = 8 (a fixed step above solid_cfl dx / c is refused, solver/scene.cpp)
+  // = 8 (a fixed step above solid_cfl dx / c is refused, solver/scene/scene.cpp)
   const fs::path out = dir_ / "blowup";
   const Result r = run({"run", kScenes + "disc_tgv.toml", "--out", out.string(), "--threads", "1", "--quiet", "--set",
                         "grid.nx=48", "--set", "grid.ny=48", "--set", "time.dt=0.008", "--set", "solids.solid_cfl=8",
                         "--set", "solid[0].mu_s=200", "--set", "time.end=4"},
                        dir_ / "b");
   EXPECT_EQ(r.code, 3) << r.err;
-  // caught by the energy check (solver/run.cpp, BlowUpCheck) while the fields are finite
+  // caught by the energy check (solver/app/run.cpp, BlowUpCheck) while the fields are finite
   EXPECT_NE(r.err.find("kinetic energy grew from"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("in one step (step 3, t = 0.024)"), std::string::npos) << r.err;
   const std::string diag = slurp(out / "diagnostics.csv");
@@ -258,7 +258,7 @@ TEST_F(Survival, BlowUpIsExit3NamingStepAndTime) {
 }
 
 namespace {
-/// The FieldData TIME of a .vti frame (solver/vtk.cpp writes it with 17 digits).
+/// The FieldData TIME of a .vti frame (solver/io/vtk.cpp writes it with 17 digits).
 double vti_time(const fs::path& p) {
   const std::string x = slurp(p);
   const auto k = x.find("Name=\"TIME\"");

@@ -10,8 +10,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 #include "tests/quoted_results.hpp"
 #include "tests/test_helpers.hpp"
 

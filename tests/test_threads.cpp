@@ -10,13 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "solver/option_names.hpp"
+#include "solver/scene/option_names.hpp"
 #include "tests/fixtures/poisson_problem.hpp"
-#include "solver/poisson.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
-#include "solver/solid.hpp"
-#include "solver/thread_governor.hpp"
+#include "solver/pressure/poisson.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
+#include "solver/model/solid.hpp"
+#include "solver/app/thread_governor.hpp"
 #include "test_helpers.hpp"
 
 namespace refmap {
@@ -77,7 +77,7 @@ TEST(Threads, SolidScene128SameBitsOnOneAndTwoThreads) {
     EXPECT_TRUE(same_bits(a.fields[k], b.fields[k])) << names[k] << " differs";
 }
 
-// The thread governor (solver/thread_governor.hpp) changes the team size between steps of
+// The thread governor (solver/app/thread_governor.hpp) changes the team size between steps of
 // a run; the run must still be the same bits as one on a fixed team. Team sizes 2, 2, 1,
 // 2, 1, 1, ... (a pattern that switches in both directions, also between equal sizes) for
 // 40 steps against 1 thread throughout.

@@ -1,4 +1,4 @@
-// Passive tracers (solver/tracers.hpp) and solid material points (solver/markers.hpp):
+// Passive tracers (solver/components/tracers.hpp) and solid material points (solver/components/markers.hpp):
 //  - tracers in a solid-body rotation: the cell velocity is linear, so the bilinear
 //    interpolation is exact and the only error is RK-4's; after one revolution it must be
 //    within the RK-4 phase error and fall by ~2^4 when dt is halved;
@@ -13,11 +13,11 @@
 #include <filesystem>
 #include <string>
 
-#include "solver/checkpoint_io.hpp"
-#include "solver/markers.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
-#include "solver/tracers.hpp"
+#include "solver/io/checkpoint_io.hpp"
+#include "solver/components/markers.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
+#include "solver/components/tracers.hpp"
 #include "tests/fixtures/scene_text.hpp"
 
 using namespace refmap;

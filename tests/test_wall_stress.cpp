@@ -1,4 +1,4 @@
-// The wall shear stress and the relative viscosity of a shear cell (solver/wall_stress.hpp):
+// The wall shear stress and the relative viscosity of a shear cell (solver/components/wall_stress.hpp):
 //  - plane Couette flow between walls at -U/2 and +U/2, periodic along x, started from rest:
 //    the discrete linear profile is exact, so once the start-up has decayed (e^{-pi^2 nu t /
 //    H^2}: 2e-5 at t = 1.1) both walls carry mu gamma and eta_r = 1;
@@ -14,8 +14,8 @@
 #include <cmath>
 #include <string>
 
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 
 namespace refmap {
 namespace {

@@ -10,9 +10,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "solver/run.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/app/run.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 #include "tests/quoted_results.hpp"
 #include "tests/test_helpers.hpp"
 

@@ -18,7 +18,7 @@
 //   W_v     dt sum ubar . f_v dx^2     the viscous force div mu (grad u* + grad u*^T)
 //                                      (kernels/viscous.cpp) as the explicit step would apply it
 //   W_i     sum ubar . (rho d - dt f_s - dt f_v) dx^2, d = u** - u*: the implicit term of
-//                                      solver/implicit_step.hpp (implicit viscosity, eta of the
+//                                      solver/model/implicit_step.hpp (implicit viscosity, eta of the
 //                                      stabilised splitting, the rate operator); 0 if explicit
 //   W_adv   sum rho ubar . (u* - u^n) dx^2   the momentum advection (eq. 5.1)
 //   W_proj  sum rho ubar . (u^{n+1} - u**) dx^2   the projection (eqs. 5.4-5.7)
@@ -47,9 +47,9 @@
 
 #include "kernels/solid_stress.hpp"
 #include "kernels/viscous.hpp"
-#include "solver/boundary.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/model/boundary.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 
 namespace {
 

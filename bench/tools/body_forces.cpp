@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "solver/control_volume_forces.hpp"
-#include "solver/scene.hpp"
-#include "solver/simulation.hpp"
+#include "solver/components/control_volume_forces.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
 
 int main(int argc, char** argv) {
   using namespace refmap;

@@ -1,0 +1,252 @@
+#pragma once
+// Everything a scene file says, after validation. solver/scene/scene.cpp fills it from TOML;
+// the time loop (solver/model/simulation.cpp) only reads it. The member initialisers below are
+// the defaults of the scene keys: the key table (solver/scene/scene_keys.cpp) reads them from a
+// default-constructed Config, so the loader and scenes/README.md use these values.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "kernels/boundary_kind.hpp"
+#include "kernels/advection.hpp"
+#include "kernels/reference_map.hpp"
+#include "kernels/constitutive.hpp"
+#include "core/grid.hpp"
+#include "solver/model/expression.hpp"
+#include "solver/pressure/poisson.hpp"
+#include "solver/model/shape.hpp"
+
+namespace refmap {
+
+enum class BcType { NoSlip, MovingWall, FreeSlip, Periodic, Inflow, Outflow };
+
+// Physics options are enums from the moment the scene is loaded; their scene-file names
+// live in one place, solver/scene/option_names.hpp (to_string / parse_option).
+
+/// Config::flow: solve Navier-Stokes, or impose the initial velocity field at every step.
+enum class FlowMode { Solve, Prescribed };
+/// InitialVelocity::kind.
+enum class InitialKind { Zero, Uniform, TaylorGreen, Expression };
+/// SolidSpec::velocity: initial velocity inside a solid.
+enum class SolidVelocity { Rigid, Fluid };
+/// SolidSpec::motion: a soft solid moved by the flow (Free), or a rigid body held still,
+/// moved on a prescribed path or pinned at a point (solver/model/rigid_body.hpp, docs/bodies.md).
+enum class SolidMotion { Free, Fixed, Prescribed, Pinned };
+/// SolidSpec::forcing: how a rigid body's velocity is imposed (solver/model/rigid_body.hpp):
+/// Diffuse, relaxed by the sub-cell fraction chi; Interpolated, sharp (cells inside take the
+/// body's velocity, the fluid cells next to the surface a value interpolated along the normal);
+/// Sharp, Interpolated with the cells inside cut out of the pressure solve (their faces carry
+/// the body's velocity and are not corrected).
+enum class BodyForcing { Diffuse, Interpolated, Sharp };
+/// Config::body_force (output.body_force): the force written as solidK_fx, _fy, _torque.
+/// Forcing: a rigid body's, the momentum its direct forcing adds (solver/model/rigid_body.hpp);
+/// ControlVolume: every body's, from a momentum balance of the fluid around it
+/// (solver/components/control_volume_forces.hpp).
+enum class BodyForceEstimator { Forcing, ControlVolume };
+/// SolidsOptions::extrapolation: Algorithm 2 (least squares) or the PDE baseline.
+enum class ExtrapolationMethod { Lsq, Pde };
+/// SolidsOptions::stress_form: discretisation of the solid stress divergence.
+enum class StressForm { Cell, Face };
+/// SolidsOptions::stress_blend: the weight of a solid's stress in the mixture (eq. 3.6):
+/// Volume, the paper's 1 - H; Specific, (1 - H) rho_b / rho_s for a solid heavier than the
+/// fluid (rho_b = (1 - H) rho_s + H rho_f): the stress per unit mass blended by volume
+/// fraction, so the light cells of the blend are not driven harder than the solid
+/// (docs/density_ratio.md). The same as Volume when rho_s <= rho_f.
+enum class StressBlend { Volume, Specific };
+/// Config::viscous_time: the viscous stress forward Euler (eq. 5.2) or backward Euler in
+/// its compact part (solver/model/implicit_step.hpp, docs/implicit.md).
+enum class ViscousTime { Explicit, Implicit };
+/// Config::solid_time: the solid stress explicit, or explicit plus the stabilising implicit
+/// isotropic term eta = k G dt (1 - H) minus its explicit counterpart, or the
+/// upper-convected stress increment 2 mu_s dt (1 - H)(L b + b L^T) implicit (docs/implicit.md).
+enum class SolidStressTime { Explicit, SemiImplicit, UpperConvected };
+/// Config::jump_flux: the momentum's face values where the density is not one value in a
+/// face's stencil (a density jump), with central advection: Superbee-limited (default) or
+/// the same central values as elsewhere (docs/density_ratio.md).
+enum class JumpFlux { Superbee, Same };
+
+/// Boundary condition of one side. `velocity` is the tangential wall speed of a moving
+/// wall (u on bottom/top, v on left/right); the normal velocity at a wall is always 0.
+/// Periodic must be set on both sides of a direction. Inflow: the velocity (inflow_u,
+/// inflow_v) on the side is prescribed as expressions of x, y, t (docs/boundaries.md);
+/// Outflow: p = 0 and zero normal derivative of the velocity.
+struct SideBc {
+  BcType type = BcType::NoSlip;
+  double velocity = 0.0;
+  Expression inflow_u, inflow_v;  ///< Inflow only: u(x, y, t), v(x, y, t) on the side
+  /// Optional time dependence of a moving wall: speed = velocity * sin(omega t + phase)
+  /// when `oscillating` is true (the elastic-layer Couette flow needs it).
+  bool oscillating = false;
+  double omega = 0.0, phase = 0.0;
+  double speed(double t) const;  ///< defined in solver/model/boundary.cpp
+};
+
+/// A named line probe: `points` samples from (x0,y0) to (x1,y1) of a cell field
+/// ("u", "v", "p", "speed", "vorticity", "density"), bilinear from cell centres.
+struct ProbeSpec {
+  std::string name, field;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int points = 2;
+};
+
+/// A [[tracers]] table: `n` points on the segment (x0,y0)-(x1,y1), ends included (line),
+/// or nx x ny points on the lattice of the box with corners (x0,y0), (x1,y1) (box).
+struct TracerSeed {
+  bool box = false;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int n = 0, nx = 0, ny = 0;
+};
+
+struct InitialVelocity {
+  InitialKind kind = InitialKind::Zero;
+  double u = 0.0, v = 0.0;    ///< uniform velocity
+  double amplitude = 1.0;     ///< Taylor-Green: u = A sin(k(x-x0)) cos(k(y-y0)), v = -A cos sin
+  double wavenumber = 0.0;    ///< k; 0 means 2 pi / lx
+  std::string u_expr, v_expr; ///< expression kind: functions of x, y (and pi)
+};
+
+/// `actuation` of a [[solid]] (docs/actuation.md): its stress-free configuration is the
+/// reference one mapped by A(t) = diag(s, 1/s) [[1, g], [0, 1]] (det A = 1), s = stretch_x(t),
+/// g = shear(t), expressions of t (kernels/constitutive_actuation.hpp). Empty: not actuated.
+struct ActuationSpec {
+  std::string stretch_x, shear;
+  bool enabled() const { return !stretch_x.empty() || !shear.empty(); }
+};
+
+/// One solid of a scene ([[solid]] tables).
+struct SolidSpec {
+  std::string name;
+  ShapeParams shape;          ///< reference configuration, phi0 of eq. (3.2)
+  double mu_s = 0.0;          ///< the paper's mu^s: sigma = 2 mu_s b, shear modulus G = 2 mu_s
+  /// constitutive law (kernels/constitutive.hpp): neo-Hookean (eq. 2.9) or strain-stiffening
+  /// W = mu_s (I1 - 3) + c3 (I1 - 3)^2
+  ConstitutiveLaw model = ConstitutiveLaw::NeoHookean;
+  double c3 = 0.0;            ///< strain-stiffening coefficient (model StrainStiffening only)
+  double density = 1.0;       ///< rho_s
+  double viscosity = 0.0;     ///< Kelvin-Voigt solid viscosity (0: no viscous stress in the solid)
+  /// Rigid: u = (u, v) + omega x (x - centre); Fluid: keep the fluid's
+  SolidVelocity velocity = SolidVelocity::Rigid;
+  double u = 0.0, v = 0.0, omega = 0.0;
+  /// Free: a soft solid (the paper's); otherwise a rigid body whose velocity is imposed in
+  /// its region (solver/model/rigid_body.hpp). A rigid body has no elastic stress (mu_s = 0).
+  SolidMotion motion = SolidMotion::Free;
+  BodyForcing forcing = BodyForcing::Diffuse;  ///< rigid bodies only
+  /// Prescribed: the centre's path x(t), y(t) and the rotation rate omega(t) (expressions
+  /// of t; the path starts at the shape's centre).
+  std::string path_x, path_y, rotation_rate;
+  double pivot_x = 0.0, pivot_y = 0.0;  ///< Pinned: the fixed point it rotates about
+  /// A soft solid clamped to a rigid one: its reference map is held at the rigid motion
+  /// where it overlaps that body ("" = not clamped); clamp_index is its index.
+  std::string clamp;
+  int clamp_index = -1;
+  bool rigid() const { return motion != SolidMotion::Free; }
+  /// material points written to markers.csv (solver/components/markers.hpp): reference positions,
+  /// then `boundary_markers` points on the reference boundary
+  std::vector<std::array<double, 2>> markers;
+  int boundary_markers = 0;
+  ActuationSpec actuation;
+};
+
+/// Options shared by all solids ([solids] table).
+struct SolidsOptions {
+  ExtrapolationMethod extrapolation = ExtrapolationMethod::Lsq;  ///< Algorithm 2, or the Aslam 2004 PDE baseline
+  /// Lsq: radius of the plane fit, in cells; the known cells with offsets di^2 + dj^2 <=
+  /// floor(lsq_radius^2) enter it. Default 2 sqrt(2) (a 5 x 5 block), half the paper's
+  /// 4 sqrt(2): with the paper's radius a stiff solid translating through an inviscid
+  /// fluid gains energy without bound and impacts gain energy (docs/reference_map.md; the
+  /// numbers in results/methods.md, "Least-squares fit radius"; why the wider fit feeds it is
+  /// not established). Both radii are exact for affine xi.
+  double lsq_radius = 2.0 * 1.4142135623730951;
+  double band = 6.0;        ///< w_E, width of the extrapolated band, in cells
+  double transition = 3.0;  ///< w_T, half-width of the smoothed Heaviside (eq. 3.5), in cells
+  bool conservative = true; ///< divergence of the blended stress (true) or blend of divergences
+  /// Cell (default, the paper's discretisation): divergence of the cell-centred stress of
+  /// eqs. (2.9), (3.1); Face: compact face-based stress (couples the odd-even mode that
+  /// the 2 dx-wide cell form leaves undamped in an inviscid solid, but was seen to gain
+  /// energy in the disc-in-Taylor-Green case; see kernels/solid_stress.hpp)
+  StressForm stress_form = StressForm::Cell;
+  StressBlend stress_blend = StressBlend::Volume;  ///< solids.stress_blend (cell, conservative form)
+  /// face values of xi in its advection (eq. 3.3): Central (the paper's), VanLeer or
+  /// Superbee (limited upwind: damp grid-scale xi oscillations where the solid moves; all
+  /// three exact for an affine xi; see docs/reference_map.md)
+  XiFlux xi_advection = XiFlux::VanLeer;
+  double solid_cfl = 0.5;   ///< P of section 4: dt <= P dx / sqrt(2 mu_s / rho_s)
+  bool reinitialise = true; ///< fast-marching reinitialisation of phi0(xi)
+  double pde_tol = 1e-8;    ///< PDE baseline: stop when max |change| per iteration < tol * (largest known |xi|)
+  int pde_max_iter = 1000;
+};
+
+/// Solid-solid and solid-wall contact ([contact] table; see solver/model/contact.hpp).
+struct ContactOptions {
+  bool enabled = true;         ///< repulsion between solids and from walls (FlowMode::Solve only)
+  bool walls = true;           ///< also from the non-periodic sides
+  double range = 2.5;          ///< d_c in cells: the force acts once a gap is below d_c
+  double stiffness = 20.0;     ///< contact pressure at zero gap, in units of rho_max U^2
+  double velocity_scale = 0.0; ///< U; 0 = automatic (see solver/model/contact.hpp)
+};
+
+struct Config {
+  std::string scene_path;  ///< the file it came from (for messages)
+  std::string name;        ///< scene name (file stem unless set)
+
+  Grid grid;
+  double rho_f = 1.0;  ///< fluid density
+  double mu_f = 0.0;   ///< fluid dynamic viscosity
+  std::array<SideBc, 4> bc{};
+  InitialVelocity init;
+  double gx = 0.0, gy = 0.0;  ///< gravity; acts on rho - rho_f (balanced-force, Algorithm 1 step 5)
+
+  // time
+  double t_start = 0.0, t_end = 1.0;
+  double cfl = 0.5;          ///< advective Courant number: dt (|u|+|v|)_max / dx <= cfl
+  double visc_safety = 0.9;  ///< fraction of the forward-Euler viscous bound rho dx^2/(6 mu)
+  double dt_fixed = 0.0;     ///< > 0 forces this dt
+  double dt_max = 1e30;
+  long max_steps = 0;        ///< 0 = unlimited
+  double steady_tol = 0.0;   ///< > 0: stop when max|u^{n+1}-u^n|/dt < steady_tol
+  ViscousTime viscous_time = ViscousTime::Explicit;        ///< time.viscous
+  SolidStressTime solid_time = SolidStressTime::Explicit;  ///< time.solid_stress
+  double solid_implicit_k = 0.5;  ///< time.solid_implicit_k: k of eta = k G dt (stable for k >= 1/4)
+  /// time.solid_implicit_reach: cells by which the implicit solid coefficient's blend
+  /// 1 - H(phi - reach dx) reaches further into the fluid than the stress's (docs/implicit.md)
+  double solid_implicit_reach = 0.0;
+  /// time.solid_implicit_cfl: P of dt <= P dx sqrt(rho_s / G) for the implicit solid stress
+  /// (0: no solid limit; with the reach a disc in a fluid stays bounded to P ~ 8)
+  double solid_implicit_cfl = 0.0;
+  int solid_rate_sweeps = 1;  ///< time.solid_rate_sweeps: outer block Gauss-Seidel sweeps of the upper-convected step (1: cross terms lagged)
+  /// time.implicit_tol: relative residual of the implicit velocity solve (the velocity
+  /// change d over a step; solver/model/implicit_step.hpp); looser than the pressure's solver.tol
+  double implicit_tol = 1e-5;
+
+  // numerics
+  FluxScheme advection = FluxScheme::Central;  ///< momentum fluxes of eq. (5.1)
+  JumpFlux jump_flux = JumpFlux::Superbee;      ///< solver.density_jump_flux
+  PoissonOptions poisson;
+
+  // output
+  double output_interval = 0.0;  ///< simulated time between VTK frames; 0 = first and last only
+  bool write_vtk = true;
+  /// a checkpoint (DIR/checkpoint.bin, solver/model/checkpoint.cpp) with every VTK frame
+  bool checkpoint_frames = true;
+  /// and every this many wall minutes (0: not by wall time); refmap run --checkpoint-minutes
+  double checkpoint_minutes = 30.0;
+  int diagnostics_every = 1;     ///< steps between rows of diagnostics.csv
+  /// output.wall_stress: the shear stress on the bottom and top walls and the relative
+  /// viscosity of a shear cell in diagnostics.csv (solver/components/wall_stress.hpp)
+  bool wall_stress = false;
+  BodyForceEstimator body_force = BodyForceEstimator::Forcing;  ///< output.body_force
+  double log_interval_s = 2.0;   ///< wall seconds between log lines when not on a terminal
+  std::vector<ProbeSpec> probes;
+  std::vector<TracerSeed> tracers;  ///< passive fluid tracers (solver/components/tracers.hpp)
+
+  // solids
+  std::vector<SolidSpec> solids;
+  SolidsOptions solid_opt;
+  ContactOptions contact;
+  /// Solve (Navier-Stokes) or Prescribed: the initial velocity field (an expression,
+  /// possibly of t) is imposed at every step and no flow is solved (kinematic tests such
+  /// as the Zalesak disk).
+  FlowMode flow = FlowMode::Solve;
+};
+
+}  // namespace refmap

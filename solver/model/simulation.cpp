@@ -1,0 +1,783 @@
+#include "solver/model/simulation.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "kernels/advection.hpp"
+#include "kernels/loop.hpp"
+#include "kernels/projection.hpp"
+#include "kernels/rk4.hpp"
+#include "kernels/solid_stress.hpp"
+#include "kernels/viscous.hpp"
+#include "solver/components/actuation.hpp"
+#include "solver/model/boundary.hpp"
+#include "solver/components/control_volume_forces.hpp"
+#include "solver/model/expression.hpp"
+#include "solver/components/markers.hpp"
+#include "solver/model/time_step_limits.hpp"
+#include "solver/components/tracers.hpp"
+#include "solver/components/wall_stress.hpp"
+
+namespace refmap {
+
+Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc)) {
+  const int nx = cfg_.grid.nx, ny = cfg_.grid.ny, ng = Grid::ng;
+  for (Field* f : {&u_, &v_, &p_, &rho_, &rho_old_, &mu_, &dp_, &rhs_, &mx_, &my_, &kx_, &ky_,
+                   &sx_, &sy_, &fx_, &fy_})
+    f->resize(nx, ny, ng);
+  for (Field* f : {&uf_, &beta_x_, &gxf_}) f->resize(nx + 1, ny, ng);
+  for (Field* f : {&vf_, &beta_y_, &gyf_}) f->resize(nx, ny + 1, ng);
+  for (Field* f : {&k2x_, &k2y_}) f->resize(nx, ny, ng);
+  bool elastic = false;
+  for (const SolidSpec& sp : cfg_.solids) {
+    solids_.push_back(std::make_unique<Solid>(sp, cfg_.solid_opt, cfg_.grid, sides_, cfg_.rho_f));
+    elastic = elastic || sp.mu_s > 0.0;
+  }
+  if (elastic)
+    for (Field* f : {&sxx_, &sxy_, &syy_}) f->resize(nx, ny, ng);
+  for (const SolidSpec& sp : cfg_.solids) density_contrast_ = density_contrast_ || sp.density != cfg_.rho_f;
+  if (density_contrast_ && cfg_.advection == FluxScheme::Central && cfg_.jump_flux == JumpFlux::Superbee) {
+    jump_x_.resize(nx + 1, ny, ng);
+    jump_y_.resize(nx, ny + 1, ng);
+  }
+  if (RigidBodies::needed(cfg_)) bodies_ = std::make_unique<RigidBodies>(cfg_);
+  cut_faces_ = bodies_ && bodies_->cuts_faces();
+  poisson_ = make_poisson_solver(cfg_.poisson);
+  if (cfg_.viscous_time == ViscousTime::Implicit || cfg_.solid_time != SolidStressTime::Explicit) {
+    implicit_ = std::make_unique<ImplicitVelocity>(cfg_);
+    mimp_.resize(nx, ny, ng);
+  }
+  if (cfg_.solid_time == SolidStressTime::UpperConvected)
+    for (Field* f : {&qxx_, &qxy_, &qyy_}) f->resize(nx, ny, ng);
+  initialise();
+  if (!solids_.empty()) {
+    // velocity scale of the contact pressure (solver/model/contact.hpp): the largest initial
+    // speed on the grid and the free-fall speed over the domain along g
+    double umax = 0.0;
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) umax = std::max(umax, std::hypot(u_(i, j), v_(i, j)));
+    const double gmag = std::hypot(cfg_.gx, cfg_.gy);
+    if (gmag > 0.0) {
+      const double L = (std::abs(cfg_.gx) * cfg_.grid.lx() + std::abs(cfg_.gy) * cfg_.grid.ly()) / gmag;
+      umax = std::max(umax, std::sqrt(2.0 * gmag * L));
+    }
+    contact_ = std::make_unique<Contact>(cfg_, umax);
+    if (contact_->force_enabled()) {
+      cfx_.resize(nx + 1, ny, ng);
+      cfy_.resize(nx, ny + 1, ng);
+    }
+    contact_->observe(t_, solids_, solid_diagnostics());
+    solid_diag_step_ = -1;  // u_mut()/v_mut() may still change the initial state
+  }
+  register_state();
+  add_components();
+}
+
+void Simulation::register_state() {
+  // the checkpoint's records, in this order (solver/model/checkpoint.cpp)
+  state_.add_value("sim.t", t_);
+  state_.add_count("sim.step", nstep_);
+  const std::pair<const char*, Field*> fields[] = {
+      {"u", &u_},     {"v", &v_},       {"p", &p_},     {"rho", &rho_}, {"rho_old", &rho_old_},
+      {"mu", &mu_},   {"uf", &uf_},     {"vf", &vf_},   {"dp", &dp_},   {"gxf", &gxf_},
+      {"gyf", &gyf_}, {"sxx", &sxx_},   {"sxy", &sxy_}, {"syy", &syy_}, {"cfx", &cfx_},
+      {"cfy", &cfy_}, {"beta_x", &beta_x_}, {"beta_y", &beta_y_}};
+  for (const auto& [name, f] : fields) state_.add_field(std::string("sim.") + name, *f);
+  state_.add_value("sim.elastic_energy", elastic_energy_);
+  state_.add_count("sim.poisson_iterations", last_stats_.iterations);
+  state_.add_value("sim.poisson_residual", last_stats_.rel_residual);
+  register_solids_state();
+  if (implicit_) implicit_->register_state(state_);  // its initial guesses (warm start)
+}
+
+void Simulation::add_components() {
+  // the order of the hooks at each step point: actuation first (the stress of the step
+  // needs A(t + dt)), then the tracers (the velocity of the step's start), the markers
+  if (auto a = ActuatedSolids::from_scene(cfg_)) add_component(std::move(a));
+  if (!cfg_.tracers.empty())
+    add_component(std::make_unique<Tracers>(cfg_.grid, tracer_seeds(cfg_.tracers), sides_.periodic_x(),
+                                            sides_.periodic_y()));
+  if (auto m = std::make_unique<Markers>(solids_, cfg_.grid); !m->empty()) add_component(std::move(m));
+  if (cfg_.wall_stress) add_component(std::make_unique<WallStress>(cfg_));
+  if (cfg_.body_force == BodyForceEstimator::ControlVolume && !solids_.empty() && cfg_.flow == FlowMode::Solve)
+    add_component(std::make_unique<ControlVolumeForces>(*this));
+}
+
+void Simulation::add_component(std::unique_ptr<Component> c) {
+  c->register_state(state_);
+  components_.push_back(std::move(c));
+}
+
+void Simulation::call_components(StepPoint p, double dt) {
+  for (const auto& c : components_) {
+    ScopedPhase ph(timers_, c->name());
+    c->at(p, *this, dt);
+  }
+}
+
+namespace {
+
+/// set_stage_probe's function as a component, called at the two points inside the step.
+class StageProbe : public Component {
+ public:
+  explicit StageProbe(std::function<void(StepPoint, double)> f) : f_(std::move(f)) {}
+  const char* name() const override { return "stage probe"; }
+  void at(StepPoint p, Simulation&, double dt) override {
+    if (p == StepPoint::Advected || p == StepPoint::Stressed) f_(p, dt);
+  }
+
+ private:
+  std::function<void(StepPoint, double)> f_;
+};
+
+}  // namespace
+
+void Simulation::set_stage_probe(std::function<void(Stage, double dt)> probe) {
+  add_component(std::make_unique<StageProbe>(std::move(probe)));
+}
+
+const Tracers* Simulation::tracers() const { return component<Tracers>(); }
+const ControlVolumeForces* Simulation::control_volume_forces() const { return component<ControlVolumeForces>(); }
+const Markers* Simulation::markers() const { return component<Markers>(); }
+
+namespace {
+
+/// The initial (or, for FlowMode::Prescribed, the imposed) velocity at (x, y, t).
+struct VelocityFunction {
+  const InitialVelocity& in;
+  const Grid& g;
+  Expression eu, ev;
+  double k;
+  VelocityFunction(const InitialVelocity& init, const Grid& grid) : in(init), g(grid) {
+    if (in.kind == InitialKind::Expression) {
+      eu = Expression(in.u_expr);
+      ev = Expression(in.v_expr);
+    }
+    k = in.wavenumber > 0.0 ? in.wavenumber : 2.0 * M_PI / g.lx();
+  }
+  void operator()(double x, double y, double t, double& u, double& v) const {
+    u = v = 0.0;
+    if (in.kind == InitialKind::Uniform) {
+      u = in.u; v = in.v;
+    } else if (in.kind == InitialKind::TaylorGreen) {
+      const double X = k * (x - g.x0), Y = k * (y - g.y0);
+      u = in.amplitude * std::sin(X) * std::cos(Y);
+      v = -in.amplitude * std::cos(X) * std::sin(Y);
+    } else if (in.kind == InitialKind::Expression) {
+      u = eu.eval(x, y, t);
+      v = ev.eval(x, y, t);
+    }
+  }
+};
+
+}  // namespace
+
+void Simulation::impose_prescribed_velocity(double t) {
+  const Grid& g = cfg_.grid;
+  VelocityFunction vel(cfg_.init, g);
+  double a, b;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      vel(g.xc(i), g.yc(j), t, u_(i, j), v_(i, j));
+    }
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i <= g.nx; ++i) { vel(g.xf(i), g.yc(j), t, a, b); uf_(i, j) = a; }
+  for (int j = 0; j <= g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) { vel(g.xc(i), g.yf(j), t, a, b); vf_(i, j) = b; }
+  apply_velocity_bc(u_, v_, t);
+}
+
+void Simulation::blend_material_fields() {
+  // eq. (3.6): q = q_f + sum_i (1 - H_i) (q_s,i - q_f) for density and viscosity
+  parallel_fill(rho_.raw(), rho_.raw_size(), cfg_.rho_f);
+  parallel_fill(mu_.raw(), mu_.raw_size(), cfg_.mu_f);
+  for (const auto& s : solids_) {
+    s->add_blend(rho_, s->spec().density, cfg_.rho_f);
+    s->add_blend(mu_, s->spec().viscosity, cfg_.mu_f);
+  }
+  fill_scalar_ghosts(rho_, cfg_.bc);
+  fill_scalar_ghosts(mu_, cfg_.bc);
+}
+
+namespace {
+
+// Work of a solid's phase for parallel_items, in cells of a simple row loop (the unit of
+// kMinParallelCells): window cells times the cost of a window cell relative to an axpy
+// cell. Measured on two_solids_tgv, 1 thread: advection + extrapolation + level set
+// ~200 ns per window cell and step, the window stress ~15 ns, the diagnostics a few ns;
+// an axpy cell ~0.5-1 ns.
+constexpr long kStepCellCost = 64, kStressCellCost = 16, kDiagnosticsCellCost = 4;
+
+long window_work(const Solid& s, long cell_cost) { return long(s.ni()) * s.nj() * cell_cost; }
+
+}  // namespace
+
+void Simulation::update_solids(double dt) {
+  // Algorithm 1, steps 1-2 for every solid: each solid's work touches only its own window
+  // and workspaces, so the solids run concurrently, one solid per thread
+  // (kernels/loop.hpp, parallel_items); a single or dominant solid threads its row loops.
+  using clock = std::chrono::steady_clock;
+  const int n = int(solids_.size());
+  // per solid: [xi advection without its stage re-extrapolations, extrapolation, level set]
+  std::vector<std::array<double, 3>> secs(std::size_t(n), std::array<double, 3>{});
+  const auto w0 = clock::now();
+  if (bodies_) bodies_->advance(t_, dt);
+  parallel_items(n, [&](int k) { return window_work(*solids_[std::size_t(k)], kStepCellCost); }, [&](int k) {
+    Solid& s = *solids_[std::size_t(k)];
+    // the RK-4 stages re-extrapolate the band (Solid::advect): that time is booked under
+    // "extrapolation", the rest under "xi advection"
+    const double ext0 = s.extrapolation_counters().seconds;
+    const auto t0 = clock::now();
+    // a rigid body's reference map is set from its pose, not advected (solver/model/rigid_body.hpp)
+    const bool rigid = bodies_ && bodies_->rigid(k);
+    if (!rigid) s.advect(uf_, vf_, dt);
+    const double t_adv = std::chrono::duration<double>(clock::now() - t0).count();
+    if (!rigid) s.extrapolate();
+    if (bodies_) bodies_->place(k, solids_);  // rigid: the whole map; clamped: inside its body
+    const double t_ext = s.extrapolation_counters().seconds - ext0;
+    const double t_stage_ext = std::min(t_ext, t_adv);
+    const auto t1 = clock::now();
+    s.rebuild_level_set();
+    secs[std::size_t(k)] = {t_adv - t_stage_ext, t_ext,
+                            std::chrono::duration<double>(clock::now() - t1).count()};
+  });
+  // PhaseTimers is not thread-safe: book here, the wall time of the region split in the
+  // proportions of the solids' (thread) times, one call per solid as before
+  const double wall = std::chrono::duration<double>(clock::now() - w0).count();
+  std::array<double, 3> sum{};
+  for (const auto& a : secs)
+    for (int c = 0; c < 3; ++c) sum[std::size_t(c)] += a[std::size_t(c)];
+  const double all = sum[0] + sum[1] + sum[2];
+  const double scale = all > 0.0 ? wall / all : 0.0;
+  timers_.add("xi advection", sum[0] * scale, n);
+  timers_.add("extrapolation", sum[1] * scale, n);
+  timers_.add("level set", sum[2] * scale, n);
+}
+
+void Simulation::solid_force() {
+  const Grid& g = cfg_.grid;
+  elastic_energy_ = 0.0;
+  if (sxx_.nx() == 0) return;
+  // the stress on each window, solids concurrently; then the blend into the global tensor
+  // (or force), serially in solid order: windows overlap, and the sums must have the same
+  // bits for any number of threads
+  parallel_items(int(solids_.size()),
+                 [&](int k) { return window_work(*solids_[std::size_t(k)], kStressCellCost); },
+                 [&](int k) { solids_[std::size_t(k)]->compute_stress(); });
+  for (Field* f : {&sxx_, &sxy_, &syy_}) parallel_fill(f->raw(), f->raw_size(), 0.0);
+  for (const auto& s : solids_) elastic_energy_ += s->blend_stress_into(sxx_, sxy_, syy_, fx_, fy_);
+  if (cfg_.solid_opt.conservative && cfg_.solid_opt.stress_form == StressForm::Cell) {
+    for (Field* f : {&sxx_, &sxy_, &syy_}) fill_scalar_ghosts(*f, cfg_.bc);
+    add_stress_divergence(sxx_.view(), sxy_.view(), syy_.view(), fx_.view(), fy_.view(), g.nx,
+                          g.ny, g.dx);
+  }
+}
+
+std::pair<double, double> Simulation::momentum() const {
+  const Grid& g = cfg_.grid;
+  double mx = 0, my = 0;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      mx += rho_(i, j) * u_(i, j);
+      my += rho_(i, j) * v_(i, j);
+    }
+  return {mx * g.dx * g.dx, my * g.dx * g.dx};
+}
+
+Simulation::~Simulation() = default;
+
+void Simulation::initialise() {
+  const Grid& g = cfg_.grid;
+  t_ = cfg_.t_start;
+  nstep_ = 0;
+  rho_.fill(cfg_.rho_f);
+  rho_old_.fill(cfg_.rho_f);
+  mu_.fill(cfg_.mu_f);
+  p_.fill(0.0);
+  dp_.fill(0.0);
+
+  if (cfg_.flow == FlowMode::Prescribed) {
+    blend_material_fields();
+    impose_prescribed_velocity(t_);
+    prescribed_depends_on_time_ =
+        cfg_.init.kind == InitialKind::Expression &&
+        (Expression(cfg_.init.u_expr).uses_time() || Expression(cfg_.init.v_expr).uses_time());
+    return;
+  }
+  VelocityFunction vel(cfg_.init, g);
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) vel(g.xc(i), g.yc(j), t_, u_(i, j), v_(i, j));
+  for (const auto& s : solids_) s->impose_initial_velocity(u_, v_);
+  blend_material_fields();
+  rho_old_ = rho_;
+  build_poisson_coefficients();
+
+  // Initial projection: make the face velocities exactly divergence-free (and remove the
+  // discrete divergence of the initial cell field) without touching the pressure.
+  apply_velocity_bc(u_, v_, t_);
+  gxf_.fill(0.0);
+  gyf_.fill(0.0);
+  predict_face_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), uf_.view(), vf_.view(),
+                        g.nx, g.ny, 0.0, sides_);
+  if (cut_faces_) bodies_->impose_cut_faces(solids_, uf_, vf_, g);
+  face_divergence(uf_.view(), vf_.view(), rhs_.view(), g.nx, g.ny, g.dx, 1.0);
+  dp_.fill(0.0);
+  last_stats_ = poisson_->solve(rhs_, dp_);
+  fill_scalar_ghosts(dp_, cfg_.bc);
+  correct_face_velocity(uf_.view(), vf_.view(), dp_.view(), beta_x_.view(), beta_y_.view(), g.nx,
+                        g.ny, g.dx, 1.0, sides_);
+  face_accel(dp_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
+             g.dx, 0.0, 0.0, cfg_.rho_f, sides_);
+  if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);
+  correct_cell_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny, 1.0);
+  apply_velocity_bc(u_, v_, t_);
+  dp_.fill(0.0);
+}
+
+void Simulation::apply_velocity_bc(Field& u, Field& v, double t) const {
+  fill_vector_ghosts(u, v, cfg_.bc, cfg_.grid, t);
+}
+
+void Simulation::build_poisson_coefficients() {
+  const Grid& g = cfg_.grid;
+  face_beta(rho_.view(), beta_x_.view(), beta_y_.view(), g.nx, g.ny, sides_);
+  // forcing = "sharp": no pressure coupling across the faces of a body's inside cells
+  if (cut_faces_) bodies_->clear_cut_faces(solids_, beta_x_, beta_y_, g);
+  poisson_->setup(poisson_operator());
+}
+
+PoissonOperator Simulation::poisson_operator() {
+  PoissonOperator op;
+  op.grid = cfg_.grid;
+  op.sides = sides_.pressure();
+  op.beta_x = &beta_x_;
+  op.beta_y = &beta_y_;
+  // an outflow side fixes the pressure's constant: the problem is no longer singular
+  if (outflow_sink(beta_x_, beta_y_, sides_, cfg_.grid, sink_)) op.sink = &sink_;
+  return op;
+}
+
+double Simulation::stable_dt() const {
+  const Grid& g = cfg_.grid;
+  // advective: dt (|u| + |v|)_max / dx <= cfl (section 4; RK-4 with central fluxes is stable
+  // to a Courant number of 2.8 on the imaginary axis, the scene's cfl keeps a margin)
+  double umax = parallel_rows_max(0, g.ny, g.nx, [&](int j) {
+    double m = 0.0;
+    for (int i = 0; i < g.nx; ++i) m = std::max(m, std::abs(u_(i, j)) + std::abs(v_(i, j)));
+    return m;
+  });
+  for (const SideBc& s : cfg_.bc)
+    if (s.type == BcType::MovingWall) umax = std::max(umax, std::abs(s.velocity));
+  umax = std::max(umax, max_inflow_speed(cfg_.bc, g, t_));
+  double dt = cfg_.dt_max;
+  // gravity acts on rho - rho_f (Algorithm 1 step 5): a solid accelerates by at most
+  // |g| |rho_s - rho_f| / rho_s (a light one rises faster than |g|), the fluid by none;
+  // |g| itself is kept as a floor
+  const double gmag = std::hypot(cfg_.gx, cfg_.gy);
+  double accel = gmag;
+  if (gmag > 0.0)
+    for (const auto& s : solids_)
+      if (!s->spec().rigid())  // a rigid body's motion is imposed
+        accel = std::max(accel, gmag * std::abs(s->spec().density - cfg_.rho_f) / s->spec().density);
+  if (accel > 0.0) {
+    // with gravity, the speed at the step's end, umax + a dt, in the Courant number:
+    // dt (umax + a dt) <= cfl dx, so a step from rest is bounded too (cfl dx / umax is
+    // infinite there; the contact spring's limit used to cover that, see below)
+    const double c = cfg_.cfl * g.dx;
+    dt = std::min(dt, 2.0 * c / (umax + std::sqrt(umax * umax + 4.0 * accel * c)));
+  } else if (umax > 0.0) {
+    dt = std::min(dt, cfg_.cfl * g.dx / umax);
+  }
+  // viscous: forward Euler is stable for dt <= rho dx^2 / (6 mu) (solver/model/time_step_limits.hpp)
+  double nu_max = parallel_rows_max(0, g.ny, g.nx, [&](int j) {
+    double m = 0.0;
+    for (int i = 0; i < g.nx; ++i) m = std::max(m, mu_(i, j) / rho_(i, j));
+    return m;
+  });
+  // (no viscous limit with the implicit viscous step, no shear-wave limit with the
+  // semi-implicit solid stress: solver/model/implicit_step.hpp)
+  if (nu_max > 0.0 && cfg_.viscous_time == ViscousTime::Explicit)
+    dt = std::min(dt, viscous_dt_limit(cfg_.visc_safety, g.dx, nu_max));
+  if (cfg_.solid_time == SolidStressTime::Explicit)
+    for (const auto& s : solids_) dt = std::min(dt, s->min_dt());
+  else if (cfg_.solid_implicit_cfl > 0.0)  // the implicit stress's own cap (docs/implicit.md)
+    for (const auto& s : solids_) dt = std::min(dt, s->min_dt(cfg_.solid_implicit_cfl));
+  if (contact_ && contact_->force_enabled()) {
+    // the force acts in the layer -2 dx < phi < 0 of a solid, where the blended density is
+    // at least the mean of the solid's and the fluid's
+    double rho_min = 1e300;
+    for (const auto& s : solids_) rho_min = std::min(rho_min, 0.5 * (s->spec().density + cfg_.rho_f));
+    // the spring only acts on gaps below its range: its limit (dt ~ 0.1 dx / U) is needed
+    // only in a step that can bring a surface into range (solver/model/contact.hpp)
+    const double dt_contact = contact_->min_dt(rho_min);
+    if (dt > dt_contact && !contact_->clear_of_contact(umax, dt)) dt = dt_contact;
+  }
+  for (const auto& c : components_) dt = std::min(dt, c->max_dt(*this));
+  return dt;
+}
+
+void Simulation::add_contact_face_accel() {
+  // G_f -= beta_f F_f: the contact force per unit volume on each face, over the face density
+  // nothing to add when no face got a contact force (G_f - beta_f * (+0) is G_f, bit for bit)
+  if (!(contact_ && contact_->force_enabled()) || !contact_force_written_) return;
+  const Grid& g = cfg_.grid;
+  // the boundary faces of a direction: a wall face carries no normal velocity (nothing to
+  // add); a periodic direction's faces 0 and n are one face
+  bool x_seam = false, y_seam = false;
+  switch (sides_[Left]) {
+    case FaceKind::Wall:
+    case FaceKind::Inflow:
+    case FaceKind::Outflow: break;  // no contact force on an open face (solver/model/contact.cpp)
+    case FaceKind::Periodic: x_seam = true; break;
+  }
+  switch (sides_[Bottom]) {
+    case FaceKind::Wall:
+    case FaceKind::Inflow:
+    case FaceKind::Outflow: break;
+    case FaceKind::Periodic: y_seam = true; break;
+  }
+  parallel_rows(0, g.ny, g.nx, [&](int j) {
+    for (int i = 1; i < g.nx; ++i) gxf_(i, j) -= beta_x_(i, j) * cfx_(i, j);
+    if (x_seam) {
+      gxf_(0, j) -= beta_x_(0, j) * cfx_(0, j);
+      gxf_(g.nx, j) = gxf_(0, j);
+    }
+  });
+  parallel_rows(0, g.ny + 1, g.nx, [&](int j) {
+    if ((j == 0 || j == g.ny) && !y_seam) return;
+    const int jj = j == g.ny ? 0 : j;
+    for (int i = 0; i < g.nx; ++i) gyf_(i, j) -= beta_y_(i, jj) * cfy_(i, jj);
+  });
+}
+
+double Simulation::step(double dt) {
+  if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
+  call_components(StepPoint::Begin, dt);
+  dt = step_state(dt);
+  call_components(StepPoint::End, dt);
+  return dt;
+}
+
+double Simulation::step_state(double dt) {
+  if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
+  if (cfg_.flow == FlowMode::Prescribed) return step_prescribed(dt);
+  if (!solids_.empty()) {
+    rho_old_ = rho_;
+    move_solids(dt);                     // steps 1-3
+  }
+  advect_momentum(dt);                   // step 4
+  call_components(StepPoint::Advected, dt);
+  apply_viscous_and_solid_stress(dt);
+  call_components(StepPoint::Stressed, dt);
+  if (!solids_.empty()) setup_poisson();
+  if (contact_ && contact_->force_enabled()) compute_contact_force();
+  face_accelerations();                  // step 5's G_f, eq. (5.3)
+  if (bodies_) force_bodies(dt);         // rigid bodies' velocity (solver/model/rigid_body.hpp)
+  predict_face_velocities(dt);           // step 5
+  solve_pressure();                      // step 6
+  project(dt);                           // steps 7-9
+  t_ += dt;
+  ++nstep_;
+  if (contact_) observe_contact();
+  return dt;
+}
+
+double Simulation::step_prescribed(double dt) {
+  // kinematics only: move the solids in the imposed flow
+  move_solids(dt);
+  t_ += dt;
+  ++nstep_;
+  if (prescribed_depends_on_time_) {
+    ScopedPhase ph(timers_, "prescribed flow");
+    impose_prescribed_velocity(t_);
+  }
+  if (contact_) observe_contact();
+  return dt;
+}
+
+void Simulation::move_solids(double dt) {
+  // Algorithm 1, steps 1-3: advect and extrapolate xi, rebuild phi, new rho and mu
+  update_solids(dt);
+  blend_material_fields();
+}
+
+void Simulation::advect_momentum(double dt) {
+  // step 4, eq. (5.1): momentum rho*u advected by the divergence-free face velocities of
+  // the previous step, RK-4 in time (the face velocities are frozen over the stages)
+  ScopedPhase ph(timers_, "advection");
+  const Grid& g = cfg_.grid;
+  const int nx = g.nx, ny = g.ny;
+  const FluxScheme scheme = cfg_.advection;
+  const double t = t_;
+  parallel_rows(0, ny, nx, [&](int j) {
+    for (int i = 0; i < nx; ++i) {
+      mx_(i, j) = rho_old_(i, j) * u_(i, j);
+      my_(i, j) = rho_old_(i, j) * v_(i, j);
+    }
+  });
+  // at a density jump the central flux of rho*u is not damped: it feeds the heavy side's
+  // momentum into light cells (divided by their small rho^{n+1}) and the energy grows until
+  // the run blows up (ratio 100, docs/density_ratio.md); those faces take Superbee values
+  const bool hybrid = jump_x_.nx() > 0;
+  if (hybrid)
+    flag_density_jump_faces(rho_old_.cview(), rho_.cview(), jump_x_.view(), jump_y_.view(), nx, ny);
+  // kernels/rk4.hpp: (mx_, my_) holds q^n and receives q^{n+1}; stage states in (sx_, sy_)
+  Rk4Fields f;
+  f.q0x = mx_.cview();
+  f.q0y = my_.cview();
+  f.sx = sx_.view();
+  f.sy = sy_.view();
+  f.accx = kx_.view();
+  f.accy = ky_.view();
+  f.kx = k2x_.view();
+  f.ky = k2y_.view();
+  f.outx = mx_.view();
+  f.outy = my_.view();
+  f.ni = nx;
+  f.nj = ny;
+  rk4_step(f, dt, [&](int stage, View kx, View ky) {
+    Field& qx = stage == 1 ? mx_ : sx_;
+    Field& qy = stage == 1 ? my_ : sy_;
+    fill_vector_ghosts(qx, qy, cfg_.bc, g, t, cfg_.rho_f);
+    if (hybrid)
+      advect_rhs2_hybrid(qx.view(), qy.view(), uf_.view(), vf_.view(), jump_x_.cview(), jump_y_.cview(), kx,
+                         ky, nx, ny, g.dx);
+    else
+      advect_rhs2(qx.view(), qy.view(), uf_.view(), vf_.view(), kx, ky, nx, ny, g.dx, scheme);
+  });
+  // u* = (rho u)* / rho^{n+1}
+  parallel_rows(0, ny, nx, [&](int j) {
+    for (int i = 0; i < nx; ++i) {
+      u_(i, j) = mx_(i, j) / rho_(i, j);
+      v_(i, j) = my_(i, j) / rho_(i, j);
+    }
+  });
+}
+
+void Simulation::apply_viscous_and_solid_stress(double dt) {
+  // eq. (5.2): split viscous step, forward Euler, divergence of the (blended) stress
+  const Grid& g = cfg_.grid;
+  const int nx = g.nx, ny = g.ny;
+  bool viscous = cfg_.mu_f > 0.0, elastic = sxx_.nx() > 0;
+  for (const auto& s : solids_) viscous = viscous || s->spec().viscosity > 0.0;
+  if (viscous || elastic) {
+    ScopedPhase ph(timers_, "viscous");
+    apply_velocity_bc(u_, v_, t_ + dt);
+    if (viscous) {
+      viscous_force(u_.view(), v_.view(), mu_.view(), fx_.view(), fy_.view(), nx, ny, g.dx);
+    } else {
+      fx_.fill(0.0);
+      fy_.fill(0.0);
+    }
+  }
+  if (elastic) {
+    ScopedPhase ph(timers_, "solid stress");
+    solid_force();
+  }
+  if ((viscous || elastic) && implicit_) {
+    ScopedPhase ph(timers_, "implicit velocity");
+    implicit_viscosity(dt);
+    if (cfg_.solid_time == SolidStressTime::UpperConvected) {
+      rate_coefficients(dt);
+      implicit_->apply_rate(u_, v_, fx_, fy_, rho_, mimp_, qxx_, qxy_, qyy_, dt);
+    } else {
+      implicit_->apply(u_, v_, fx_, fy_, rho_, mimp_, dt);
+    }
+  } else if (viscous || elastic) {
+    apply_force(u_.view(), v_.view(), fx_.view(), fy_.view(), rho_.view(), dt, nx, ny);
+  }
+}
+
+void Simulation::implicit_viscosity(double dt) {
+  if (cfg_.viscous_time == ViscousTime::Implicit) mimp_ = mu_;
+  else mimp_.fill(0.0);
+  if (cfg_.solid_time == SolidStressTime::SemiImplicit)
+    for (const auto& s : solids_)  // blended like the stress, eq. (3.6), reaching reach cells further out
+      if (s->spec().mu_s > 0.0)
+        s->add_blend(mimp_, cfg_.solid_implicit_k * s->wave_modulus() * dt, 0.0,
+                     cfg_.solid_implicit_reach * cfg_.grid.dx);
+  fill_scalar_ghosts(mimp_, cfg_.bc);
+}
+
+void Simulation::rate_coefficients(double dt) {
+  // q = 2 mu_s dt (1 - H) b of every elastic solid (the upper-convected step's tensor,
+  // kernels/helmholtz.hpp), b from the stress just computed from the advected xi
+  for (Field* f : {&qxx_, &qxy_, &qyy_}) f->fill(0.0);
+  for (const auto& s : solids_) {
+    if (s->spec().mu_s <= 0.0) continue;
+    // per piece of the window that does not cross a periodic side (solver/model/periodic_window.hpp)
+    s->for_each_piece([&](const WindowPiece& p) {
+      auto at = [&](const Field& f) { return shifted_view(f.cview(), p.li, p.lj); };
+      with_constitutive_model(s->spec(), [&](const auto& model) {
+        blend_rate_coefficients(model, at(s->stress_xx()), at(s->stress_xy()), at(s->stress_yy()), at(s->phi()),
+                                p.ni, p.nj, s->transition(), cfg_.solid_implicit_reach * cfg_.grid.dx, dt,
+                                qxx_.view(), qxy_.view(), qyy_.view(), p.gi, p.gj);
+      });
+    });
+  }
+  for (Field* f : {&qxx_, &qxy_, &qyy_}) fill_scalar_ghosts(*f, cfg_.bc);
+}
+
+void Simulation::setup_poisson() {
+  ScopedPhase ph(timers_, "poisson setup");
+  build_poisson_coefficients();
+}
+
+void Simulation::compute_contact_force() {
+  // contact force on the faces of the new configuration (solver/model/contact.hpp), applied
+  // with the pressure gradient and gravity in the balanced-force face accelerations
+  ScopedPhase ph(timers_, "contact");
+  // the force is zero away from the solids' contact layers, i.e. everywhere in most steps:
+  // the fields are cleared only after a step that wrote into them (two full passes over
+  // memory per step otherwise, most of this phase on large grids)
+  if (contact_force_written_) {
+    parallel_fill(cfx_.raw(), cfx_.raw_size(), 0.0);
+    parallel_fill(cfy_.raw(), cfy_.raw_size(), 0.0);
+  }
+  contact_force_written_ = contact_->add_force(solids_, cfx_, cfy_);
+}
+
+void Simulation::force_bodies(double dt) {
+  // with the face accelerations the predictor will subtract (face_accelerations, this
+  // step): the forcing aims at u_body + dt G_c so that the predicted face velocities
+  // inside a body are its velocity
+  ScopedPhase ph(timers_, "bodies");
+  bodies_->force(solids_, u_, v_, rho_, gxf_, gyf_, p_, cfg_.grid, dt);
+}
+
+void Simulation::face_accelerations() {
+  // eq. (5.3)'s G_f: old pressure gradient, gravity and contact force on the faces; read by
+  // the bodies' forcing and the predictor. Booked with the predictor's phase (no call of
+  // its own, so the phase still counts one call per step)
+  const auto t0 = PhaseTimers::clock::now();
+  const Grid& g = cfg_.grid;
+  fill_scalar_ghosts(p_, cfg_.bc);
+  face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
+             g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, sides_);
+  add_contact_face_accel();
+  // forcing = "sharp": G_f of the cut faces (with beta = 0 there face_accel leaves -g)
+  if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);
+  timers_.add("face velocities", std::chrono::duration<double>(PhaseTimers::clock::now() - t0).count(), 0);
+}
+
+void Simulation::predict_face_velocities(double dt) {
+  ScopedPhase ph(timers_, "face velocities");
+  const Grid& g = cfg_.grid;
+  apply_velocity_bc(u_, v_, t_ + dt);
+  // step 5, eq. (5.3): Rhie-Chow-like face velocity with the old pressure and the body force
+  // (G_f from face_accelerations)
+  predict_face_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), uf_.view(), vf_.view(),
+                        g.nx, g.ny, dt, sides_);
+  // forcing = "sharp": the cut faces carry the body's velocity (beta = 0 there: the
+  // projection keeps it, whatever dt)
+  if (cut_faces_) bodies_->impose_cut_faces(solids_, uf_, vf_, g);
+  face_divergence(uf_.view(), vf_.view(), rhs_.view(), g.nx, g.ny, g.dx, 1.0 / dt);
+}
+
+void Simulation::solve_pressure() {
+  // step 6, eq. (5.4); dp from the previous step is the initial guess
+  ScopedPhase ph(timers_, "poisson");
+  last_stats_ = poisson_->solve(rhs_, dp_);
+}
+
+void Simulation::project(double dt) {
+  ScopedPhase ph(timers_, "projection");
+  const Grid& g = cfg_.grid;
+  fill_scalar_ghosts(dp_, cfg_.bc);
+  // step 7, eq. (5.5)
+  parallel_rows(0, g.ny, g.nx, [&](int j) {
+    for (int i = 0; i < g.nx; ++i) p_(i, j) += dp_(i, j);
+  });
+  if (cut_faces_) bodies_->fill_inside_pressure(solids_, p_, g);  // cut out of the solve: the fluid's
+  fill_scalar_ghosts(p_, cfg_.bc);
+  // step 8, eq. (5.6): exactly divergence-free face velocities
+  correct_face_velocity(uf_.view(), vf_.view(), dp_.view(), beta_x_.view(), beta_y_.view(),
+                        g.nx, g.ny, g.dx, dt, sides_);
+  // step 9, eq. (5.7): cell velocities with the new pressure
+  face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
+             g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, sides_);
+  add_contact_face_accel();
+  if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);
+  correct_cell_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny, dt);
+  apply_velocity_bc(u_, v_, t_ + dt);
+}
+
+void Simulation::observe_contact() {
+  ScopedPhase ph(timers_, "contact");
+  contact_->observe(t_, solids_, solid_diagnostics());
+}
+
+Field Simulation::named_field(const std::string& name) const {
+  const Grid& g = cfg_.grid;
+  Field out(g.nx, g.ny, Grid::ng);
+  if (name == "u") out = u_;
+  else if (name == "v") out = v_;
+  else if (name == "p") out = p_;
+  else if (name == "density") out = rho_;
+  else if (name == "speed") {
+    for (int j = -Grid::ng; j < g.ny + Grid::ng; ++j)
+      for (int i = -Grid::ng; i < g.nx + Grid::ng; ++i) out(i, j) = std::hypot(u_(i, j), v_(i, j));
+    return out;
+  } else if (name == "vorticity") {
+    const double s = 0.5 / g.dx;
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i)
+        out(i, j) = s * (v_(i + 1, j) - v_(i - 1, j) - u_(i, j + 1) + u_(i, j - 1));
+    // ghosts: linear extrapolation (vorticity has no boundary condition of its own)
+    for (int j = 0; j < g.ny; ++j)
+      for (int gI = 1; gI <= Grid::ng; ++gI) {
+        out(-gI, j) = 2.0 * out(-gI + 1, j) - out(-gI + 2, j);
+        out(g.nx - 1 + gI, j) = 2.0 * out(g.nx - 2 + gI, j) - out(g.nx - 3 + gI, j);
+      }
+    for (int gJ = 1; gJ <= Grid::ng; ++gJ)
+      for (int i = -Grid::ng; i < g.nx + Grid::ng; ++i) {
+        out(i, -gJ) = 2.0 * out(i, -gJ + 1) - out(i, -gJ + 2);
+        out(i, g.ny - 1 + gJ) = 2.0 * out(i, g.ny - 2 + gJ) - out(i, g.ny - 3 + gJ);
+      }
+    return out;
+  } else {
+    throw std::invalid_argument("unknown field '" + name + "'");
+  }
+  return out;
+}
+
+double Simulation::kinetic_energy() const {
+  // keyed by the step count like solid_diagnostics(): the state changes only in step(),
+  // load_state() and through u_mut()/v_mut(), which all reset the key
+  if (ke_step_ == nstep_) return ke_cache_;
+  const Grid& g = cfg_.grid;
+  ke_cache_ = g.dx * g.dx * parallel_rows_sum(0, g.ny, g.nx, [&](int j) {
+    double s = 0.0;
+    for (int i = 0; i < g.nx; ++i)
+      s += 0.5 * rho_(i, j) * (u_(i, j) * u_(i, j) + v_(i, j) * v_(i, j));
+    return s;
+  });
+  ke_step_ = nstep_;
+  return ke_cache_;
+}
+
+double Simulation::max_face_divergence() const {
+  const Grid& g = cfg_.grid;
+  return max_abs_face_divergence(uf_.view(), vf_.view(), g.nx, g.ny, g.dx);
+}
+
+const std::vector<SolidDiagnostics>& Simulation::solid_diagnostics() const {
+  // keyed by the step count: the state changes only in step() (and through u_mut()/v_mut()
+  // before the first step, which the -1 of the constructor's evaluation below covers)
+  if (solid_diag_step_ != nstep_ || solid_diag_.size() != solids_.size()) {
+    solid_diag_.resize(solids_.size());
+    // each solid's sums over its own window into its own entry: solids concurrently
+    parallel_items(int(solids_.size()),
+                   [&](int k) { return window_work(*solids_[std::size_t(k)], kDiagnosticsCellCost); },
+                   [&](int k) { solid_diag_[std::size_t(k)] = solids_[std::size_t(k)]->diagnostics(u_, v_); });
+    solid_diag_step_ = nstep_;
+  }
+  return solid_diag_;
+}
+
+}  // namespace refmap

@@ -1,0 +1,236 @@
+#pragma once
+// One time step over the state: Algorithm 1 of Jain & Mani (fluid steps 4-9 here; solids
+// add steps 1-3). The run loop, output and diagnostics are in solver/app/run.hpp.
+#include <functional>
+#include <memory>
+#include <utility>
+#include <string>
+#include <vector>
+
+#include "solver/model/component.hpp"
+#include "solver/model/config.hpp"
+#include "solver/model/contact.hpp"
+#include "solver/model/implicit_step.hpp"
+#include "core/field.hpp"
+#include "core/grid.hpp"
+#include "solver/pressure/poisson.hpp"
+#include "solver/model/rigid_body.hpp"
+#include "solver/model/solid.hpp"
+#include "solver/io/state_registry.hpp"
+#include "solver/model/timers.hpp"
+
+namespace refmap {
+
+class CheckpointWriter;
+class CheckpointReader;
+class Tracers;
+class Markers;
+class ControlVolumeForces;
+
+class Simulation {
+ public:
+  explicit Simulation(const Config& cfg);
+  ~Simulation();
+
+  /// One time step of size dt (dt <= 0: choose it from the stability limits).
+  /// Returns the dt taken.
+  double step(double dt = 0.0);
+
+  /// The stability-limited time step of section 4 (advective, viscous, solid shear wave).
+  double stable_dt() const;
+
+  // state
+  const Config& config() const { return cfg_; }
+  const Grid& grid() const { return cfg_.grid; }
+  double time() const { return t_; }
+  long steps() const { return nstep_; }
+  const Field& u() const { return u_; }
+  const Field& v() const { return v_; }
+  const Field& p() const { return p_; }
+  const Field& rho() const { return rho_; }
+  const Field& uf() const { return uf_; }  ///< x-face normal velocity, (nx+1) x ny
+  const Field& vf() const { return vf_; }  ///< y-face normal velocity, nx x (ny+1)
+  Field& u_mut() { ke_step_ = -1; return u_; }
+  Field& v_mut() { ke_step_ = -1; return v_; }
+
+  /// Passive fluid tracers and solid material points (null when the scene has none).
+  const Tracers* tracers() const;
+  const Markers* markers() const;
+
+  // components (solver/model/component.hpp)
+  /// Attaches a component: its state joins the checkpoint, its hooks the step, its columns
+  /// diagnostics.csv. The scene's own components are added by the constructor.
+  void add_component(std::unique_ptr<Component> c);
+  const std::vector<std::unique_ptr<Component>>& components() const { return components_; }
+  /// The first component of type T (null: none).
+  template <class T>
+  const T* component() const {
+    for (const auto& c : components_)
+      if (const T* p = dynamic_cast<const T*>(c.get())) return p;
+    return nullptr;
+  }
+  /// Every array and number that carries information from one step to the next
+  /// (solver/io/state_registry.hpp); save_state / load_state iterate it.
+  const StateRegistry& state() const { return state_; }
+  /// The solids, for components that change them between steps (actuation).
+  std::vector<std::unique_ptr<Solid>>& solids_mut() { solid_diag_step_ = -1; return solids_; }
+
+  /// Cell field by probe/output name: u, v, p, density, speed, vorticity (ghosts filled).
+  Field named_field(const std::string& name) const;
+
+  // solids
+  const std::vector<std::unique_ptr<Solid>>& solids() const { return solids_; }
+  double elastic_energy() const { return elastic_energy_; }  ///< at the last stress evaluation
+  /// Global blended solid stress (conservative form); empty when there are no elastic solids.
+  const Field& solid_stress_xx() const { return sxx_; }
+  const Field& solid_stress_xy() const { return sxy_; }
+  const Field& solid_stress_yy() const { return syy_; }
+  /// Closes the contact event log at the current time (restitution of a rebound still
+  /// being tracked); run() (solver/app/run.hpp) calls it at the end.
+  void finish_events() { if (contact_) contact_->finish(t_); }
+  /// Contact model and gap/event tracker (null without solids).
+  const Contact* contact() const { return contact_.get(); }
+  /// The contact force density of the last step on x- and y-faces (empty without contact).
+  const Field& contact_force_x() const { return cfx_; }
+  const Field& contact_force_y() const { return cfy_; }
+  /// Rigid bodies' poses and loads (solver/model/rigid_body.hpp; null without a rigid body).
+  const RigidBodies* bodies() const { return bodies_.get(); }
+  /// Bodies' forces from the fluid's momentum balance (output.body_force = "control_volume";
+  /// solver/components/control_volume_forces.hpp), else null.
+  const ControlVolumeForces* control_volume_forces() const;
+  /// Total momentum sum rho u dx^2 (x and y).
+  std::pair<double, double> momentum() const;
+
+  // diagnostics
+  /// sum 0.5 rho |u|^2 dx^2 over cells; computed once per step (the blow-up check and the
+  /// diagnostics row both read it)
+  double kinetic_energy() const;
+  double max_face_divergence() const;  ///< max over cells of |div u_f| (faces' net flux / dx)
+  int last_poisson_iterations() const { return last_stats_.iterations; }
+  /// The implicit velocity solve (time.viscous / time.solid_stress; null when explicit).
+  const ImplicitVelocity* implicit_velocity() const { return implicit_.get(); }
+  double last_poisson_residual() const { return last_stats_.rel_residual; }
+  const PhaseTimers& timers() const { return timers_; }
+  /// The run loop books its output phases here and resets it after the warm-up.
+  PhaseTimers& timers() { return timers_; }
+  /// Solid::diagnostics of every solid for the current state, computed once per step and
+  /// shared by the contact log and the diagnostics.csv row.
+  const std::vector<SolidDiagnostics>& solid_diagnostics() const;
+
+  /// Everything step() needs to continue bit for bit (solver/model/checkpoint.cpp): the records
+  /// of state() in order. load_state expects a Simulation built from the same scene (and
+  /// with the same components added).
+  void save_state(CheckpointWriter& w) const;
+  void load_state(CheckpointReader& r);
+
+  /// Fill ghost cells of the cell velocity from the boundary conditions at time t.
+  void apply_velocity_bc(Field& u, Field& v, double t) const;
+
+  /// Inside step(), for probes that need the split step's intermediate velocities (the
+  /// energy budget of bench/energy_budget/energy_budget.cpp, docs/implicit.md): `probe` is
+  /// called at StepPoint::Advected and ::Stressed of every step, as a component.
+  using Stage = StepPoint;
+  void set_stage_probe(std::function<void(Stage, double dt)> probe);
+  /// The blended mixture viscosity of the current configuration (eq. 3.6).
+  const Field& viscosity() const { return mu_; }
+
+ private:
+  void initialise();
+  /// The flow's and the solids' records of state_ (the components add theirs).
+  void register_state();
+  /// The solids', the contact tracker's and the rigid bodies' records (solver/model/checkpoint.cpp).
+  void register_solids_state();
+  /// The scene's components (tracers, markers, actuation), in the order of their hooks.
+  void add_components();
+  /// Calls every component's hook at point p, timed under the component's name.
+  void call_components(StepPoint p, double dt);
+  /// step() without the components' hooks (which step() calls around it).
+  double step_state(double dt);
+  void build_poisson_coefficients();
+  /// The pressure solver's operator of the current beta (open sides as walls, the outflow
+  /// sides' Dirichlet condition as the cell sink sink_).
+  PoissonOperator poisson_operator();
+  // The phases of step(), in order; each books its time under the phase of the same name
+  // in the timing table.
+  /// flow = "prescribed": only the solids move, in the imposed velocity field.
+  double step_prescribed(double dt);
+  /// Algorithm 1 steps 1-3: "xi advection", "extrapolation", "level set" of every solid,
+  /// then density and viscosity of the mixture.
+  void move_solids(double dt);
+  /// Step 4, eq. (5.1), "advection": RK-4 advection of the momentum rho u.
+  void advect_momentum(double dt);
+  /// Eq. (5.2), "viscous" and "solid stress": split forward-Euler step of the stresses.
+  void apply_viscous_and_solid_stress(double dt);
+  /// "poisson setup": the face coefficients 1/rho of the new density.
+  void setup_poisson();
+  /// "contact": contact force on the faces of the new configuration.
+  void compute_contact_force();
+  /// Step 5, eq. (5.3), "face velocities": predicted face velocities and their divergence.
+  void face_accelerations();
+  void predict_face_velocities(double dt);
+  /// Step 6, eq. (5.4), "poisson": the pressure correction.
+  void solve_pressure();
+  /// Steps 7-9, eqs. (5.5)-(5.7), "projection": new pressure, face and cell velocities.
+  void project(double dt);
+  /// "bodies": the direct forcing of the rigid bodies' velocity (solver/model/rigid_body.hpp).
+  void force_bodies(double dt);
+  /// "contact": the gap and event tracker after the step.
+  void observe_contact();
+
+  /// Algorithm 1 steps 1-2 for every solid (timed as "xi advection", "extrapolation",
+  /// "level set").
+  void update_solids(double dt);
+  void blend_material_fields();
+  /// Force of the solid stresses (conservative or not) into fx_, fy_ (which it overwrites).
+  void solid_force();
+  /// The implicit viscosity of solver/model/implicit_step.hpp into mimp_: mu (time.viscous =
+  /// "implicit") plus eta = k G dt (1 - H) of every elastic solid (time.solid_stress =
+  /// "semi_implicit").
+  void implicit_viscosity(double dt);
+  /// The upper-convected step's tensor q = 2 mu_s dt (1 - H) b (time.solid_stress =
+  /// "upper_convected") of every elastic solid into qxx_, qxy_, qyy_.
+  void rate_coefficients(double dt);
+  void impose_prescribed_velocity(double t);
+  /// Subtracts beta_f times the contact face force from the face accelerations gxf_, gyf_.
+  void add_contact_face_accel();
+
+  Config cfg_;
+  /// The sides as the projection and the pressure solvers see them (built once).
+  Sides sides_;
+  double t_ = 0.0;
+  long nstep_ = 0;
+
+  Field u_, v_, p_, rho_, rho_old_, mu_;   // cell-centred
+  Field jump_x_, jump_y_;                  // faces at a density jump (limited momentum flux)
+  bool density_contrast_ = false;          // some solid's density differs from the fluid's
+  Field uf_, vf_;                          // face-normal velocities (exactly divergence-free)
+  Field beta_x_, beta_y_;                  // 1/rho on faces for the Poisson problem
+  Field dp_, rhs_;                         // pressure correction and Poisson right-hand side
+  Field sink_;                             // outflow sides' Poisson sink (empty without one)
+  // RK-4 work arrays (momentum rho u, rho v)
+  Field mx_, my_, kx_, ky_, sx_, sy_, fx_, fy_, k2x_, k2y_;
+  Field gxf_, gyf_;                        // face accelerations G_f of eqs. (5.3), (5.7)
+  std::vector<std::unique_ptr<Solid>> solids_;
+  mutable std::vector<SolidDiagnostics> solid_diag_;  ///< cache of solid_diagnostics()
+  mutable long solid_diag_step_ = -1;                 ///< the step it belongs to (-1: none)
+  mutable double ke_cache_ = 0.0;                     ///< kinetic_energy() of step ke_step_
+  mutable long ke_step_ = -1;                         ///< (-1: none)
+  Field sxx_, sxy_, syy_;                  // blended solid stress (global, if any solid is elastic)
+  double elastic_energy_ = 0.0;
+  bool prescribed_depends_on_time_ = false;  ///< flow = "prescribed" with an expression of t
+  std::unique_ptr<Contact> contact_;
+  std::unique_ptr<RigidBodies> bodies_;    // null unless a solid is rigid
+  bool cut_faces_ = false;                 // a rigid body with forcing = "sharp" (bodies_->cuts_faces())
+  Field cfx_, cfy_;                        // contact force density of the last step
+  bool contact_force_written_ = true;      // cfx_/cfy_ may be nonzero (compute_contact_force)
+  std::unique_ptr<PoissonSolver> poisson_;
+  SolveStats last_stats_;
+  std::unique_ptr<ImplicitVelocity> implicit_;  ///< implicit stress step (null: explicit)
+  Field mimp_;                                   ///< its implicit viscosity
+  Field qxx_, qxy_, qyy_;                         ///< its upper-convected tensor (kernels/helmholtz.hpp)
+  PhaseTimers timers_;
+  std::vector<std::unique_ptr<Component>> components_;
+  StateRegistry state_;
+};
+
+}  // namespace refmap

@@ -1,0 +1,612 @@
+// The scene-file schema (see solver/scene/scene_keys.hpp). One entry per key; the order here is
+// the order of the reference in scenes/README.md.
+#include "solver/scene/scene_keys.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+#include "solver/model/config.hpp"
+#include "solver/scene/option_names.hpp"
+
+namespace refmap {
+
+namespace {
+
+/// Shortest "%g"-style text that reads back as v (for the reference; messages use their
+/// own format in scene.cpp).
+std::string num_text(double v) {
+  char buf[64];
+  if (v == std::floor(v) && std::fabs(v) < 1e15) {  // integers in full: 100, 1000000000
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+    return buf;
+  }
+  for (int prec = 1; prec <= 17; ++prec) {
+    std::snprintf(buf, sizeof buf, "%.*g", prec, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  std::string s = buf;
+  // 1e-08 -> 1e-8
+  const auto e = s.find('e');
+  if (e != std::string::npos) {
+    std::size_t d = e + 1;
+    if (d < s.size() && (s[d] == '-' || s[d] == '+')) ++d;
+    while (d + 1 < s.size() && s[d] == '0') s.erase(d, 1);
+    if (s[e + 1] == '+') s.erase(e + 1, 1);
+  }
+  return s;
+}
+
+/// A float as a scene file would write it: 1 -> "1.0", 0.5 -> "0.5", 1e-8 -> "1e-8".
+std::string float_text(double v) {
+  std::string s = num_text(v);
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s;
+}
+
+// ---- range builders
+KeyRange gt(double lo, std::string note = "") { return {lo, std::nullopt, true, false, std::move(note), ""}; }
+KeyRange ge(double lo, std::string note = "") { return {lo, std::nullopt, false, false, std::move(note), ""}; }
+KeyRange in(double lo, bool lo_open, double hi, bool hi_open, std::string note = "") {
+  return {lo, hi, lo_open, hi_open, std::move(note), ""};
+}
+/// A range enforced by a cross-key check in scene.cpp; documented only.
+KeyRange text_range(std::string text) { return {std::nullopt, std::nullopt, false, false, "", std::move(text)}; }
+
+// ---- entry builders
+KeyDef key(const char* table, const char* name, KeyType type, KeyValue def, KeyRange range, const char* desc) {
+  KeyDef k;
+  k.table = table;
+  k.name = name;
+  k.type = type;
+  k.def = std::move(def);
+  k.range = std::move(range);
+  k.description = desc;
+  return k;
+}
+KeyDef num(const char* table, const char* name, std::optional<double> def, KeyRange range, const char* desc) {
+  return key(table, name, KeyType::Float, def ? KeyValue(*def) : KeyValue(), std::move(range), desc);
+}
+KeyDef integer(const char* table, const char* name, std::optional<long> def, KeyRange range, const char* desc) {
+  return key(table, name, KeyType::Integer, def ? KeyValue(*def) : KeyValue(), std::move(range), desc);
+}
+KeyDef boolean(const char* table, const char* name, bool def, const char* desc) {
+  return key(table, name, KeyType::Bool, def, {}, desc);
+}
+KeyDef vec2(const char* table, const char* name, std::optional<std::array<double, 2>> def, const char* desc) {
+  return key(table, name, KeyType::Vec2, def ? KeyValue(*def) : KeyValue(), {}, desc);
+}
+KeyDef str(const char* table, const char* name, std::optional<std::string> def, const char* desc) {
+  return key(table, name, KeyType::String, def ? KeyValue(*def) : KeyValue(), {}, desc);
+}
+template <class E>
+KeyDef choice(const char* table, const char* name, std::optional<E> def, const char* desc) {
+  KeyDef k = key(table, name, KeyType::Choice, def ? KeyValue(std::string(to_string(*def))) : KeyValue(), {}, desc);
+  k.choices = canonical_names<E>();
+  return k;
+}
+KeyDef only(KeyDef k, const char* selector, std::vector<std::string> values) {
+  k.selector = selector;
+  k.only = std::move(values);
+  return k;
+}
+KeyDef shown_default(KeyDef k, const char* text) {
+  k.default_text = text;
+  return k;
+}
+
+std::vector<KeyDef> build_keys() {
+  const Config d;  // the defaults (solver/model/config.hpp)
+  const SolidSpec ds;
+  const ShapeParams& dsh = ds.shape;
+  const PoissonOptions& dp = d.poisson;
+  const SolidsOptions& dso = d.solid_opt;
+  const ContactOptions& dc = d.contact;
+  const InitialVelocity& di = d.init;
+  const SideBc db;
+  using KT = KeyType;
+  const std::vector<std::string> kRectangle = {"rounded_rectangle"}, kNotTabulated = {"circle", "ellipse",
+                                                                                       "rounded_rectangle", "zalesak"};
+  std::vector<KeyDef> k = {
+      shown_default(str("", "name", std::nullopt,
+                        "name of the scene; the default output directory is `out/<name>`. Must not contain `/`"),
+                    "file stem"),
+
+      num("domain", "x0", d.grid.x0, {}, "x of the lower-left corner"),
+      num("domain", "y0", d.grid.y0, {}, "y of the lower-left corner"),
+      num("domain", "lx", std::nullopt, gt(0), "width of the domain"),
+      shown_default(num("domain", "ly", std::nullopt, gt(0),
+                        "height of the domain; cells are square, so it must equal `lx * ny / nx` (to 1e-12 "
+                        "relative) and may be omitted"),
+                    "`lx * ny / nx`"),
+
+      integer("grid", "nx", std::nullopt, ge(8, "the multigrid solver needs at least 8 cells per direction"),
+              "cells in x"),
+      integer("grid", "ny", std::nullopt, ge(8, "the multigrid solver needs at least 8 cells per direction"),
+              "cells in y"),
+
+      num("fluid", "density", d.rho_f, gt(0), "fluid density rho_f"),
+      num("fluid", "viscosity", std::nullopt, ge(0),
+          "fluid dynamic viscosity mu_f (the kinematic viscosity is `viscosity / density`)"),
+
+      key("boundary", "left", KT::Boundary, {}, {}, "boundary condition of the side x = x0"),
+      key("boundary", "right", KT::Boundary, {}, {}, "boundary condition of the side x = x0 + lx"),
+      key("boundary", "bottom", KT::Boundary, {}, {}, "boundary condition of the side y = y0"),
+      key("boundary", "top", KT::Boundary, {}, {}, "boundary condition of the side y = y0 + ly"),
+
+      choice<BcType>("boundary.side", "type", std::nullopt, "kind of the boundary condition"),
+      only(num("boundary.side", "velocity", std::nullopt, {},
+               "tangential wall speed U (u on bottom/top, v on left/right); the normal velocity is 0"),
+           "type", {"moving_wall"}),
+      only(shown_default(num("boundary.side", "omega", std::nullopt, gt(0),
+                             "oscillating wall: speed U sin(omega t + phase)"),
+                         "steady wall"),
+           "type", {"moving_wall"}),
+      only(num("boundary.side", "phase", db.phase, {}, "phase of the oscillating wall (needs `omega`)"), "type",
+           {"moving_wall"}),
+      only(shown_default(key("boundary.side", "u", KT::Expression, {}, {},
+                             "x velocity u(x, y, t) on the side (see *Expressions*); required on the left and "
+                             "right sides (the normal velocity)"),
+                         "`0`"),
+           "type", {"inflow"}),
+      only(shown_default(key("boundary.side", "v", KT::Expression, {}, {},
+                             "y velocity v(x, y, t) on the side; required on the bottom and top sides"),
+                         "`0`"),
+           "type", {"inflow"}),
+
+      choice<InitialKind>("initial", "velocity", di.kind, "initial velocity field"),
+      only(num("initial", "u", di.u, {}, "constant x velocity"), "velocity", {"uniform"}),
+      only(num("initial", "v", di.v, {}, "constant y velocity"), "velocity", {"uniform"}),
+      only(num("initial", "amplitude", di.amplitude, {},
+               "A in u = A sin(k(x-x0)) cos(k(y-y0)), v = -A cos(k(x-x0)) sin(k(y-y0))"),
+           "velocity", {"taylor_green"}),
+      only(num("initial", "wavenumber", di.wavenumber, ge(0, "0 means 2 pi / domain.lx"), "k; 0 means 2 pi / lx"),
+           "velocity", {"taylor_green"}),
+      only(key("initial", "u_expr", KT::Expression, {}, {},
+               "u(x, y, t) (see *Expressions*); checked when the scene is loaded"),
+           "velocity", {"expression"}),
+      only(key("initial", "v_expr", KT::Expression, {}, {},
+               "v(x, y, t) (see *Expressions*); checked when the scene is loaded"),
+           "velocity", {"expression"}),
+
+      vec2("gravity", "g", std::array<double, 2>{d.gx, d.gy},
+           "gravitational acceleration (gx, gy), e.g. `[0.0, -9.81]`; acts on rho - rho_f"),
+
+      num("time", "start", d.t_start, {}, "initial time"),
+      num("time", "end", std::nullopt, text_range("> start"), "final time"),
+      num("time", "cfl", d.cfl, in(0, true, 2.5, false),
+          "advective Courant number: dt (abs(u) + abs(v))_max / dx <= cfl"),
+      num("time", "viscous_safety", d.visc_safety, in(0, true, 1, false),
+          "fraction of the explicit viscous limit rho dx^2 / (6 mu) (the full-stress operator's stability bound)"),
+      num("time", "dt", d.dt_fixed, ge(0, "0 = adaptive"),
+          "fixed time step if > 0 (0: adaptive from the limits); refused above the explicit viscous limit "
+          "(time.viscous = \"explicit\") or a solid's limit at rest (time.solid_stress = \"explicit\")"),
+      shown_default(num("time", "dt_max", d.dt_max, gt(0), "upper bound of the adaptive time step"), "unlimited"),
+      integer("time", "max_steps", d.max_steps, ge(0, "0 = unlimited"), "stop after this many steps (0: unlimited)"),
+      num("time", "steady_tol", d.steady_tol, ge(0, "0 = off"),
+          "stop when max abs(u^{n+1} - u^n) / dt < steady_tol (0: off)"),
+      choice<ViscousTime>("time", "viscous", d.viscous_time,
+                          "`\"explicit\"`: forward Euler (eq. 5.2; dt <= viscous_safety rho dx^2 / (6 mu)); "
+                          "`\"implicit\"`: backward Euler in the compact part, solved by the pressure solver's "
+                          "method with a sink term; no viscous time-step limit (docs/implicit.md)"),
+      choice<SolidStressTime>("time", "solid_stress", d.solid_time,
+                              "`\"explicit\"`: dt <= solid_cfl dx sqrt(rho_s / G); `\"semi_implicit\"`: an "
+                              "implicit isotropic term eta = k G dt (1 - H) added and its explicit counterpart "
+                              "subtracted (first order in dt); `\"upper_convected\"`: the stress increment 2 mu_s dt (L b + b L^T) "
+                              "of the new velocity (upper-convected rate of b, blended with 1 - H) implicit in the "
+                              "velocity solve, its explicit counterpart subtracted (first order in dt); no solid "
+                              "time-step limit (docs/implicit.md)"),
+      num("time", "solid_implicit_k", d.solid_implicit_k, gt(0),
+          "k of the semi-implicit solid stress: eta = k G dt (stable for k >= 1/4, docs/implicit.md)"),
+      num("time", "solid_implicit_reach", d.solid_implicit_reach, ge(0, "cells"),
+          "cells by which the implicit solid term (semi_implicit or upper_convected) reaches further into the "
+          "fluid than the stress: its coefficient is blended with 1 - H(phi - reach dx) instead of 1 - H(phi); at "
+          "most solids.band - solids.transition. 2 keeps a disc in a fluid bounded to about 8x (semi_implicit) "
+          "or 4x (upper_convected) the explicit step, at some cost in accuracy (docs/implicit.md)"),
+      num("time", "solid_implicit_cfl", d.solid_implicit_cfl, ge(0, "0 = none"),
+          "P of a solid time-step limit dt <= P dx sqrt(rho_s / G) for the implicit solid stress (semi_implicit or "
+          "upper_convected), which has none by default (0); with solid_implicit_reach = 2 a disc in a fluid stays "
+          "bounded to P ~ 8, less through an impact (docs/implicit.md)"),
+      integer("time", "solid_rate_sweeps", d.solid_rate_sweeps, in(1, false, 100, false),
+              "outer block Gauss-Seidel sweeps (u, then v) of solid_stress = \"upper_convected\": the first "
+              "without its cross terms (b_xy and the other component's derivatives: lagged), each further "
+              "one with them at the last sweep's solution (docs/implicit.md)"),
+      num("time", "implicit_tol", d.implicit_tol, in(0, true, 1, true),
+          "relative residual of the implicit velocity solve (time.viscous = \"implicit\" or "
+          "solid_stress = \"semi_implicit\"): its unknown is the velocity change over a step, so it "
+          "needs far less than the pressure's solver.tol (docs/implicit.md)"),
+
+      choice<FlowMode>("solver", "flow", d.flow,
+                       "`\"solve\"`: the Navier-Stokes equations; `\"prescribed\"`: no flow solve, the initial "
+                       "velocity (e.g. an expression of t) is imposed at every step and only the solids move"),
+      choice<FluxScheme>("solver", "advection", d.advection,
+                         "momentum advection scheme: second-order central or Superbee-limited upwind (TVD)"),
+      choice<JumpFlux>("solver", "density_jump_flux", d.jump_flux,
+                       "with `advection = \"central\"` and a density contrast: the momentum's face values where "
+                       "the density varies in the flux stencil, Superbee-limited (stable to ratio 100, "
+                       "docs/density_ratio.md) or `\"same\"` central ones (the paper's; blows up from ratio 100)"),
+      choice<PoissonMethod>("solver", "poisson", dp.method,
+                            "pressure solver: multigrid, conjugate gradients, or multigrid-preconditioned CG"),
+      choice<MgCycle>("solver", "cycle", dp.cycle, "multigrid cycle"),
+      choice<MgSmoother>("solver", "smoother", dp.smoother,
+                         "multigrid smoother: red-black Gauss-Seidel or weighted Jacobi"),
+      choice<MgCoarseOperator>("solver", "coarse_operator", dp.coarse_operator,
+                               "multigrid coarse coefficients: restriction-weighted mean of beta, or fine faces "
+                               "in series normal to the coarse face, or Galerkin P^T L P with operator-dependent "
+                               "prolongation (9-point coarse levels; robust to density contrast)"),
+      integer("solver", "pre_smooth", dp.pre_smooth, in(1, false, 100, false),
+              "smoothing sweeps before coarse-grid correction"),
+      integer("solver", "post_smooth", dp.post_smooth, in(1, false, 100, false),
+              "smoothing sweeps after coarse-grid correction"),
+      num("solver", "tol", dp.tol, in(0, true, 1, true),
+          "relative residual norm(r) / norm(rhs) at which the pressure solve stops"),
+      integer("solver", "max_iter", dp.max_iter, in(1, false, 1000000, false), "iteration limit of the pressure solve"),
+      integer("solver", "coarse_cells", dp.coarse_cells, in(1, false, 1000000, false),
+              "multigrid stops coarsening at or below this many cells"),
+
+      num("output", "interval", d.output_interval, ge(0, "0 = first and last frame only"),
+          "simulated time between VTK frames (0: first and last frame only)"),
+      boolean("output", "vtk", d.write_vtk, "write VTK frames (`.vti` files and a `.pvd` series for ParaView)"),
+      boolean("output", "checkpoint", d.checkpoint_frames,
+              "write a checkpoint (`checkpoint.bin`, for `refmap resume`) with every VTK frame"),
+      num("output", "checkpoint_minutes", d.checkpoint_minutes, ge(0, "0 = not by wall time"),
+          "also write a checkpoint every this many wall minutes (`--checkpoint-minutes` overrides)"),
+      integer("output", "diagnostics_every", d.diagnostics_every, ge(1), "steps between rows of `diagnostics.csv`"),
+      boolean("output", "wall_stress", d.wall_stress,
+              "shear stress on the bottom and top walls and the relative viscosity of a shear cell in "
+              "`diagnostics.csv` (both must be walls)"),
+      choice<BodyForceEstimator>("output", "body_force", d.body_force,
+                                 "the force in `solid<k>_fx`, `_fy`, `_torque`: `\"forcing\"`, a rigid body's direct "
+                                 "forcing; `\"control_volume\"`, every unclamped solid's (a rigid body with its "
+                                 "clamped solids), from the fluid's momentum balance on a box around it "
+                                 "(docs/bodies.md)"),
+      num("output", "log_interval", d.log_interval_s, gt(0, "seconds"),
+          "wall seconds between progress log lines when stderr is not a terminal"),
+
+      str("probe", "name", std::nullopt, "unique name of letters, digits and `_` (names the output file)"),
+      [] {  // output field names, not a physics option
+        KeyDef f = key("probe", "field", KT::Choice, {}, {}, "the sampled cell field");
+        f.choices = {"u", "v", "p", "speed", "vorticity", "density"};
+        return f;
+      }(),
+      vec2("probe", "start", std::nullopt, "first point (x, y), inside the domain (walls included)"),
+      vec2("probe", "end", std::nullopt, "last point (x, y), inside the domain (walls included)"),
+      integer("probe", "points", std::nullopt, in(2, false, 10000000, false), "number of samples"),
+
+      shown_default(key("tracers", "line", KT::Points, {}, text_range("two points inside the domain"),
+                        "seed `n` tracers on the segment [[x0, y0], [x1, y1]], ends included (give `line` or `box`)"),
+                    "—"),
+      shown_default(integer("tracers", "n", {}, in(1, false, 10000000, false), "number of tracers on `line`"), "—"),
+      shown_default(key("tracers", "box", KT::Points, {}, text_range("two corners inside the domain"),
+                        "seed `nx` x `ny` tracers on the lattice of the box with corners [[x0, y0], [x1, y1]], corners "
+                        "included"),
+                    "—"),
+      shown_default(integer("tracers", "nx", {}, in(1, false, 100000, false), "tracers along x in `box`"), "—"),
+      shown_default(integer("tracers", "ny", {}, in(1, false, 100000, false), "tracers along y in `box`"), "—"),
+
+      choice<ExtrapolationMethod>("solids", "extrapolation", dso.extrapolation,
+                                  "extrapolation of the reference map into the band: least squares (the paper's "
+                                  "Algorithm 2) or the PDE baseline (Aslam 2004)"),
+      only(shown_default(num("solids", "lsq_radius", dso.lsq_radius,
+                             // r^2 in [8, 33): the 5 x 5 block (2 sqrt(2)) to the paper's 4 sqrt(2)
+                             KeyRange{std::sqrt(8.0 - 1e-6), std::sqrt(33.0), false, true,
+                                      "cells: from the 5 x 5 block, 2 sqrt(2), to the paper's 4 sqrt(2) = 5.66",
+                                      "in [2.83, 5.74]"},
+                             "radius of the least-squares plane fit in cells (cells with di² + dj² ≤ "
+                             "⌊lsq_radius²⌋ enter it); the paper's is 4√2 = `5.66`"),
+                         "`2.83` (2√2)"),
+           "extrapolation", {"lsq"}),
+      num("solids", "band", dso.band, gt(1, "cells"), "width w_E of the extrapolated band, in cells"),
+      num("solids", "transition", dso.transition, gt(0, "cells"),
+          "half-width w_T of the smoothed Heaviside that blends solid and fluid (eq. 3.5), in cells; "
+          "must be < `band - 1`"),
+      boolean("solids", "conservative", dso.conservative,
+              "`true`: divergence of the blended stress; `false`: blend of the divergences"),
+      choice<StressForm>("solids", "stress_discretisation", dso.stress_form,
+                         "solid stress divergence: `\"cell\"`, the paper's cell-centred stress (eqs. 2.9, 3.1), "
+                         "or `\"face\"`, a compact face-based form"),
+      choice<StressBlend>("solids", "stress_blend", dso.stress_blend,
+                          "weight of a solid's stress in the mixture: `\"volume\"`, the paper's 1 - H (eq. 3.6), or "
+                          "`\"specific\"`, (1 - H) rho_b / rho_s for a solid heavier than the fluid (the stress per unit "
+                          "mass blended by volume; removes most of a heavy solid's energy gain, docs/density_ratio.md); "
+                          "cell stress in the conservative form only"),
+      choice<XiFlux>("solids", "xi_advection", dso.xi_advection,
+                     "face values of ξ in its advection (eq. 3.3): second-order central (the paper's) or "
+                     "Superbee / van Leer limited upwind"),
+      num("solids", "solid_cfl", dso.solid_cfl, in(0, true, 8, false),  // above ~1 only for the stability study (bench/stability.py)
+          "P of the solid time-step limit dt <= P dx / sqrt(2 mu_s / rho_s) (explicit stress; a fixed `time.dt` above "
+          "it is refused); stiff solids fail from about 0.75 (docs/stability.md)"),
+      boolean("solids", "reinitialise", dso.reinitialise, "reinitialise phi0(xi) by fast marching every step"),
+      only(num("solids", "pde_tol", dso.pde_tol, gt(0),
+               "stop when the largest change in the band per iteration is below pde_tol times the largest "
+               "known value"),
+           "extrapolation", {"pde"}),
+      only(integer("solids", "pde_max_iter", dso.pde_max_iter, in(1, false, 1000000000, false), "iteration limit"),
+           "extrapolation", {"pde"}),
+
+      shown_default(str("solid", "name", std::nullopt,
+                        "unique name of letters, digits and `_` (`solid0`, `solid1`, ... by index)"),
+                    "`\"solid<i>\"`"),
+      choice<ShapeKind>("solid", "shape", std::nullopt, "reference shape phi0 (eq. 3.2); its keys follow"),
+      only(vec2("solid", "center", std::nullopt, "centre (x, y)"), "shape", kNotTabulated),
+      only(num("solid", "radius", std::nullopt, gt(0), "radius (of the disk, for `zalesak`)"), "shape",
+           {"circle", "zalesak"}),
+      only(key("solid", "semi_axes", KT::Vec2, {}, text_range("both > 0"), "semi-axes (a, b), a along the rotated x axis"),
+           "shape", {"ellipse"}),
+      only(key("solid", "half_size", KT::Vec2, {}, text_range("both > 0"), "half-width and half-height (hw, hh)"),
+           "shape", kRectangle),
+      only(key("solid", "corner_radius", KT::Float, dsh.corner_radius, text_range("in [0, min(hw, hh)]"),
+               "radius of the rounded corners (0: sharp)"),
+           "shape", kRectangle),
+      only(key("solid", "slot_half_width", KT::Float, {}, text_range("in (0, radius)"),
+               "half-width of the slot cut from the bottom of the disk"),
+           "shape", {"zalesak"}),
+      only(num("solid", "slot_top", std::nullopt, {},
+               "y of the top of the slot (unrotated); strictly between the y values where the slot walls meet the "
+               "circle"),
+           "shape", {"zalesak"}),
+      only(num("solid", "angle", dsh.angle, {}, "rotation, radians counter-clockwise about `center`"), "shape",
+           {"ellipse", "rounded_rectangle", "zalesak"}),
+      only(str("solid", "file", std::nullopt,
+               "text file with a sampled phi0 (negative inside), relative to the scene file's directory (format: "
+               "`solver/model/shape.hpp`)"),
+           "shape", {"tabulated"}),
+      shown_default(num("solid", "mu_s", ds.mu_s, ge(0),
+                        "the paper's mu^s: solid stress sigma = 2 mu_s b (shear modulus 2 mu_s); 0 gives a "
+                        "stress-free solid"),
+                    "required (`0.0` with `flow = \"prescribed\"`)"),
+      choice<ConstitutiveLaw>("solid", "model", ds.model,
+                              "constitutive law (kernels/constitutive.hpp): the paper's neo-Hookean sigma = 2 mu_s b, or "
+                              "strain-stiffening W = mu_s (I1 - 3) + c3 (I1 - 3)^2"),
+      only(num("solid", "c3", std::nullopt, ge(0), "stiffening coefficient of W = mu_s (I1 - 3) + c3 (I1 - 3)^2; strong stiffening (c3 = 4 mu_s in "
+               "`disc_tgv`) blows up with the cell stress form, `solids.stress_discretisation = \"face\"` stays stable"),
+           "model", {"strain_stiffening"}),
+      shown_default(num("solid", "density", ds.density, gt(0), "solid density rho_s"),
+                    "required (`1.0` with `flow = \"prescribed\"`)"),
+      num("solid", "viscosity", ds.viscosity, ge(0),
+          "Kelvin-Voigt solid viscosity (0: no viscous stress in the solid beyond the fluid's)"),
+      choice<SolidVelocity>("solid", "velocity", ds.velocity,
+                            "initial velocity inside the solid: rigid (from `u`, `v`, `omega`) or the fluid's"),
+      only(num("solid", "u", ds.u, {}, "initial translation velocity, x"), "velocity", {"rigid"}),
+      only(num("solid", "v", ds.v, {}, "initial translation velocity, y"), "velocity", {"rigid"}),
+      only(num("solid", "omega", ds.omega, {},
+               "initial rotation rate (counter-clockwise) about `center` (the bounding-box centre for `tabulated`)"),
+           "velocity", {"rigid"}),
+      choice<SolidMotion>("solid", "motion", ds.motion,
+                          "`\"free\"`: a soft solid moved by the flow; a rigid body (docs/bodies.md) held still "
+                          "(`\"fixed\"`), moved on a path (`\"prescribed\"`) or pinned at a point and free to rotate "
+                          "(`\"pinned\"`); its velocity is imposed in its region and the force on it reported in "
+                          "`solids.csv`. A rigid body takes no `mu_s`; its `viscosity` defaults to the fluid's"),
+      only(choice<BodyForcing>("solid", "forcing", ds.forcing,
+                               "how a rigid body's velocity is imposed (docs/bodies.md): `\"diffuse\"` relaxes the "
+                               "cells by their sub-cell fraction (its surface slips by O(dt)); `\"interpolated\"` is "
+                               "sharp: cells inside take the body's velocity, the fluid cells next to the surface the "
+                               "value interpolated along the normal between the surface and an image point; `\"sharp\"` is "
+                               "`\"interpolated\"` with the cells inside cut out of the pressure solve (their faces "
+                               "carry the body's velocity, not corrected by the projection); not for a pinned body"),
+           "motion", {"fixed", "prescribed", "pinned"}),
+      only(shown_default(key("solid", "path_x", KT::Expression, {}, {},
+                             "x of the centre as an expression of t; must equal `center` at the start time"),
+                         "`center` (still)"),
+           "motion", {"prescribed"}),
+      only(shown_default(key("solid", "path_y", KT::Expression, {}, {},
+                             "y of the centre as an expression of t; must equal `center` at the start time"),
+                         "`center` (still)"),
+           "motion", {"prescribed"}),
+      only(shown_default(key("solid", "rotation_rate", KT::Expression, {}, {},
+                             "rotation rate omega(t) about the centre, counter-clockwise, an expression of t"),
+                         "`0`"),
+           "motion", {"prescribed"}),
+      only(shown_default(vec2("solid", "pivot", std::nullopt,
+                              "the fixed point (x, y) a pinned body rotates about; its initial rate is `omega`"),
+                         "`center`"),
+           "motion", {"pinned"}),
+      only(shown_default(str("solid", "clamp", std::nullopt,
+                             "name of a rigid solid this soft solid is clamped to: where it overlaps that body its "
+                             "reference map moves with it, and contact between the two is off"),
+                         "not clamped"),
+           "motion", {"free"}),
+      shown_default(key("solid", "markers", KT::Points, {}, text_range("points of the reference configuration"),
+                        "material points (X, Y) of the reference configuration, followed through xi and written to "
+                        "`markers.csv` (docs/tracers.md)"),
+                    "none"),
+      integer("solid", "boundary_markers", ds.boundary_markers, ge(0),
+              "also this many material points on the reference boundary, at equal angles about the centre of "
+              "the shape's bounding box (which must lie inside the shape)"),
+
+      shown_default(key("solid", "actuation", KT::InlineTable, {}, {},
+                        "inline table `{ stretch_x = \"...\", shear = \"...\" }`: a stress-free configuration that "
+                        "changes in time (see `solid.actuation` below, docs/actuation.md)"),
+                    "none"),
+      shown_default(key("solid.actuation", "stretch_x", KT::Expression, {}, text_range("> 0 at every t"),
+                        "s(t): the stress-free shape is the reference one stretched by s along x and by 1/s along y "
+                        "(area kept)"),
+                    "`1`"),
+      shown_default(key("solid.actuation", "shear", KT::Expression, {}, {},
+                        "g(t): then sheared, x += g y (A = diag(s, 1/s) [[1, g], [0, 1]])"),
+                    "`0`"),
+
+      boolean("contact", "enabled", dc.enabled, "contact force on (the gaps and events are reported either way)"),
+      boolean("contact", "walls", dc.walls,
+              "also repulsion from the no_slip, moving_wall and free_slip sides (periodic sides never repel)"),
+      num("contact", "range", dc.range, text_range("in (0, `solids.band`)"),
+          "d in cells: the force acts once a gap is below d Δx; also the threshold of the contact events"),
+      num("contact", "stiffness", dc.stiffness, ge(0),
+          "P, the contact pressure at zero gap, in units of ρ_max U² (independent of the solids' `mu_s`)"),
+      num("contact", "velocity_scale", dc.velocity_scale, ge(0, "0 = automatic"), "U; 0 = automatic: the initial and free-fall speeds, raised to the fastest solid seen"),
+  };
+  return k;
+}
+
+std::string join(const std::vector<std::string>& v, const std::string& sep, const std::string& last_sep,
+                 const char* quote) {
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (i) s += i + 1 == v.size() ? last_sep : sep;
+    s += quote + v[i] + quote;
+  }
+  return s;
+}
+
+}  // namespace
+
+bool KeyRange::contains(double v) const {
+  if (lo && (lo_open ? !(v > *lo) : !(v >= *lo))) return false;
+  if (hi && (hi_open ? !(v < *hi) : !(v <= *hi))) return false;
+  return true;
+}
+
+std::string KeyRange::phrase() const {
+  if (!text.empty()) return text;
+  if (lo && hi)
+    return std::string("in ") + (lo_open ? "(" : "[") + num_text(*lo) + ", " + num_text(*hi) + (hi_open ? ")" : "]");
+  if (lo) return std::string(lo_open ? "> " : ">= ") + num_text(*lo);
+  if (hi) return std::string(hi_open ? "< " : "<= ") + num_text(*hi);
+  return "";
+}
+
+const std::vector<TableDef>& scene_tables() {
+  static const std::vector<TableDef> t = {
+      {"", "Top level", false, false, false, ""},
+      {"domain", "`[domain]`", true, false, false, ""},
+      {"grid", "`[grid]`", true, false, false, ""},
+      {"fluid", "`[fluid]`", true, false, false, ""},
+      {"boundary", "`[boundary]`", true, false, false,
+       "All four sides are required; each is a string or an inline table (see *Boundary conditions* below)."},
+      {"boundary.side", "`boundary.<side>` as an inline table", false, false, true,
+       "`{ type = \"moving_wall\", velocity = U }` or `{ type = \"inflow\", u = \"...\", v = \"...\" }`; "
+       "the other kinds take no further keys. An inflow needs an `\"outflow\"` side (p = 0, zero normal "
+       "derivative of the velocity); see docs/boundaries.md."},
+      {"initial", "`[initial]`", false, false, false,
+       "A key of another kind (e.g. `u` with `velocity = \"zero\"`) is an error."},
+      {"gravity", "`[gravity]`", false, false, false, ""},
+      {"time", "`[time]`", true, false, false, ""},
+      {"solver", "`[solver]`", false, false, false, ""},
+      {"output", "`[output]`", false, false, false, ""},
+      {"probe", "`[[probe]]`", false, true, false, ""},
+      {"tracers", "`[[tracers]]`", false, true, false,
+       "Passive fluid tracers, written to `tracers.csv` at every VTK frame (docs/tracers.md). Each table seeds a "
+       "`line` (with `n`) or a `box` (with `nx`, `ny`)."},
+      {"solids", "`[solids]`", false, false, false, "Options shared by all solids; widths are in cells."},
+      {"solid", "`[[solid]]`", false, true, false,
+       "A shape key that does not belong to the chosen `shape` is an error, as are `u`, `v`, `omega` with "
+       "`velocity = \"fluid\"`."},
+      {"solid.actuation", "`solid.actuation` as an inline table", false, false, true,
+       "Expressions of `t` (see *Expressions*); the stress is that of the elastic part F A(t)^-1 of the deformation, so "
+       "the solid relaxes towards its reference shape mapped by A(t) (docs/actuation.md)."},
+      {"contact", "`[contact]`", false, false, false,
+       "On by default whenever there are solids and `solver.flow = \"solve\"`."},
+  };
+  return t;
+}
+
+const std::vector<KeyDef>& scene_keys() {
+  static const std::vector<KeyDef> k = build_keys();
+  return k;
+}
+
+const KeyDef& scene_key(const std::string& table, const std::string& name) {
+  for (const auto& k : scene_keys())
+    if (k.table == table && k.name == name) return k;
+  throw std::logic_error("scene key " + (table.empty() ? name : table + "." + name) + " is not in solver/scene/scene_keys.cpp");
+}
+
+std::vector<std::string> scene_key_names(const std::string& table) {
+  std::vector<std::string> out;
+  for (const auto& k : scene_keys())
+    if (k.table == table) out.push_back(k.name);
+  return out;
+}
+
+std::vector<std::string> scene_top_level_names() {
+  std::vector<std::string> out = scene_key_names("");
+  for (const auto& t : scene_tables())
+    if (!t.name.empty() && !t.nested) out.push_back(t.name);
+  return out;
+}
+
+std::string key_type_text(const KeyDef& k) {
+  std::string t;
+  switch (k.type) {
+    case KeyType::Float: t = "float"; break;
+    case KeyType::Integer: t = "integer"; break;
+    case KeyType::Bool: t = "boolean"; break;
+    case KeyType::String: t = "string"; break;
+    case KeyType::Choice: {
+      std::vector<std::string> q;
+      for (const auto& c : k.choices) q.push_back("`\"" + c + "\"`");
+      return join(q, ", ", " or ", "");
+    }
+    case KeyType::Vec2: t = "[float, float]"; break;
+    case KeyType::Points: t = "[[float, float], ...]"; break;
+    case KeyType::InlineTable: t = "inline table"; break;
+    case KeyType::Expression: t = "expression (string or number)"; break;
+    case KeyType::Boundary: t = "boundary condition"; break;
+  }
+  const std::string r = k.range.phrase();
+  return r.empty() ? t : t + " " + r;
+}
+
+std::string key_default_text(const KeyDef& k) {
+  if (!k.default_text.empty()) return k.default_text;
+  struct V {
+    const KeyDef& k;
+    std::string operator()(std::monostate) const { return "required"; }
+    std::string operator()(double v) const { return "`" + float_text(v) + "`"; }
+    std::string operator()(long v) const { return "`" + std::to_string(v) + "`"; }
+    std::string operator()(bool v) const { return v ? "`true`" : "`false`"; }
+    std::string operator()(const std::string& s) const { return "`\"" + s + "\"`"; }
+    std::string operator()(const std::array<double, 2>& a) const {
+      return "`[" + float_text(a[0]) + ", " + float_text(a[1]) + "]`";
+    }
+  };
+  return std::visit(V{k}, k.def);
+}
+
+namespace {
+std::string only_text(const KeyDef& k) {
+  if (k.only.empty()) return "";
+  std::vector<std::string> q;
+  for (const auto& o : k.only) q.push_back("`" + o + "`");
+  return join(q, ", ", " or ", "") + " only: ";
+}
+}  // namespace
+
+std::string scene_keys_markdown() {
+  std::ostringstream o;
+  bool first = true;
+  for (const auto& t : scene_tables()) {
+    if (!first) o << "\n";
+    first = false;
+    o << "### " << t.heading;
+    if (!t.name.empty() && !t.nested)
+      o << " (" << (t.required ? "required" : "optional") << (t.repeatable ? ", repeatable" : "") << ")";
+    o << "\n\n";
+    if (!t.intro.empty()) o << t.intro << "\n\n";
+    o << "| key | type | default | meaning |\n| --- | --- | --- | --- |\n";
+    for (const auto& k : scene_keys())
+      if (k.table == t.name)
+        o << "| `" << k.name << "` | " << key_type_text(k) << " | " << key_default_text(k) << " | " << only_text(k)
+          << k.description << " |\n";
+  }
+  return o.str();
+}
+
+std::string scene_keys_text() {
+  std::ostringstream o;
+  for (const auto& k : scene_keys()) {
+    std::string name = k.table == "boundary.side" ? "boundary.<side>." + k.name : k.dotted();
+    auto plain = [](std::string t) {
+      std::string r;
+      for (char c : t)
+        if (c != '`') r += c;
+      return r;
+    };
+    o << name << "  (" << plain(key_type_text(k)) << "; default " << plain(key_default_text(k)) << ")  "
+      << plain(only_text(k) + k.description) << "\n";
+  }
+  return o.str();
+}
+
+}  // namespace refmap
