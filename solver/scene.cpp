@@ -1219,11 +1219,10 @@ void parse_suspension(const Ctx& ctx, toml::table& root, const Table& top, const
   SuspensionSpec sp;
   sp.count = s.integer("count");
   sp.area_fraction = s.number("area_fraction");
-  if ((sp.count > 0) == (sp.area_fraction > 0.0))
-    s.fail(s.has("count") ? "count" : "area_fraction",
-           "give exactly one of suspension.count (> 0) and suspension.area_fraction (> 0), got count = " +
-               std::to_string(sp.count) + " and area_fraction = " + fmt_num(sp.area_fraction));
-  sp.radius = s.number("radius");
+  // the required keys are range-checked where given and reported missing after every other
+  // key's own check (a bad value is named before a missing neighbour)
+  auto given = [&](const char* k) { return s.has(k) ? s.number(k) : 0.0; };
+  sp.radius = given("radius");
   sp.radius2 = s.number("radius2");
   sp.fraction2 = s.number("fraction2");
   sp.aspect = s.number("aspect");
@@ -1231,9 +1230,16 @@ void parse_suspension(const Ctx& ctx, toml::table& root, const Table& top, const
   sp.gap = s.number("gap");
   sp.attempts = s.integer("attempts");
   sp.name = s.string("name");
-  sp.mu_s = s.number("mu_s");
-  sp.density = s.number("density");
+  sp.mu_s = given("mu_s");
+  sp.density = given("density");
   sp.viscosity = s.number("viscosity");
+  for (const char* k : {"radius", "mu_s", "density"})
+    if (!s.has(k)) s.fail_missing(k);
+  // after every key's own range check
+  if ((sp.count > 0) == (sp.area_fraction > 0.0))
+    s.fail(s.has("count") ? "count" : "area_fraction",
+           "give exactly one of suspension.count (> 0) and suspension.area_fraction (> 0), got count = " +
+               std::to_string(sp.count) + " and area_fraction = " + fmt_num(sp.area_fraction));
   const Grid& g = cfg.grid;
   PlacementBox box{g.x0, g.y0, g.lx(), g.ly(), cfg.bc[Left].type == BcType::Periodic,
                    cfg.bc[Bottom].type == BcType::Periodic};
