@@ -7,8 +7,8 @@
 # by --set. bench/suspension.py then averages eta_r over t in [T0, T_END] (block averages
 # for the error) and writes results/suspension/: suspension.csv, eta_vs_phi.png,
 # eta_time_series.png, snapshot_stress.png.
-#   bash bench/run_suspension.sh [BUILD_DIR]   # defaults build; ~25 min CPU (1 thread), 35 min
-#                                              # wall on the loaded shared machine (load ~15)
+#   bash bench/run_suspension.sh [BUILD_DIR]   # defaults build; 12 runs, 2217 s wall on 1
+#                                              # thread on the loaded shared machine (load ~15)
 # Knobs (environment): NX (128: 6.4 cells per radius), T_END (4), T0 (1), PHIS
 # ("0.05 0.1 0.2 0.3"; 0.4 places, see results/suspension.md, but was left out for time),
 # CAS (capillary numbers; the first is the "stiff" one, "0.01 0.05 0.2"), SEED (1), JOBS
