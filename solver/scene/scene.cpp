@@ -29,6 +29,7 @@
 #include "solver/scene/option_names.hpp"
 #include "solver/model/rigid_body.hpp"
 #include "solver/scene/scene_keys.hpp"
+#include "solver/scene/suspension.hpp"
 #include "solver/model/time_step_limits.hpp"
 
 namespace refmap {
@@ -1207,6 +1208,81 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
   }
 }
 
+/// [suspension]: random particles (solver/scene/suspension.hpp), appended to the [[solid]] array
+/// of the file as ordinary solid tables before parse_solids reads it, so every check of a
+/// solid (and the overlap check of check_start_state) applies to them too.
+void parse_suspension(const Ctx& ctx, toml::table& root, const Table& top, const Config& cfg) {
+  const toml::table* tp = top.table("suspension", false);
+  if (!tp) return;
+  Table s(ctx, *tp, "suspension", "suspension");
+  s.allow();
+  SuspensionSpec sp;
+  sp.count = s.integer("count");
+  sp.area_fraction = s.number("area_fraction");
+  // the required keys are range-checked where given and reported missing after every other
+  // key's own check (a bad value is named before a missing neighbour)
+  auto given = [&](const char* k) { return s.has(k) ? s.number(k) : 0.0; };
+  sp.radius = given("radius");
+  sp.radius2 = s.number("radius2");
+  sp.fraction2 = s.number("fraction2");
+  sp.aspect = s.number("aspect");
+  sp.seed = s.integer("seed");
+  sp.gap = s.number("gap");
+  sp.attempts = s.integer("attempts");
+  sp.name = s.string("name");
+  sp.mu_s = given("mu_s");
+  sp.density = given("density");
+  sp.viscosity = s.number("viscosity");
+  for (const char* k : {"radius", "mu_s", "density"})
+    if (!s.has(k)) s.fail_missing(k);
+  // after every key's own range check
+  if ((sp.count > 0) == (sp.area_fraction > 0.0))
+    s.fail(s.has("count") ? "count" : "area_fraction",
+           "give exactly one of suspension.count (> 0) and suspension.area_fraction (> 0), got count = " +
+               std::to_string(sp.count) + " and area_fraction = " + fmt_num(sp.area_fraction));
+  const Grid& g = cfg.grid;
+  PlacementBox box{g.x0, g.y0, g.lx(), g.ly(), cfg.bc[Left].type == BcType::Periodic,
+                   cfg.bc[Bottom].type == BcType::Periodic};
+  const char* amount = sp.count > 0 ? "count" : "area_fraction";
+  const Placement pl = place_suspension(sp, box);
+  if (pl.requested == 0)
+    s.fail(amount, "area_fraction = " + fmt_num(sp.area_fraction) + " is less than half a particle's area of the "
+                   "domain: no particle to place");
+  if (!pl.complete())
+    s.fail(amount, "the random placement reached area fraction " + fmt_num(pl.area_fraction(box)) + " (" +
+                       std::to_string(pl.particles.size()) + " of " + std::to_string(pl.requested) +
+                       " particles) and found no free position for the next one in " + std::to_string(sp.attempts) +
+                       " tries (suspension.attempts); random sequential addition of equal discs jams near 0.55, "
+                       "and the gap to the walls and between particles (suspension.gap = " + fmt_num(sp.gap) +
+                       " radii) lowers that; ask for less, or a smaller gap or radius");
+  toml::array* arr = nullptr;
+  if (toml::node* n = root.get("solid")) {
+    arr = n->as_array();
+    if (!arr) top.fail("solid", "expected an array of tables ([[solid]] sections), got " + describe(*n));
+  } else {
+    arr = root.insert("solid", toml::array{}).first->second.as_array();
+  }
+  for (std::size_t i = 0; i < pl.particles.size(); ++i) {
+    const Particle& p = pl.particles[i];
+    toml::table t;
+    t.insert("name", sp.name + std::to_string(i));
+    if (p.a == p.b) {
+      t.insert("shape", "circle");
+      t.insert("radius", p.a);
+    } else {
+      t.insert("shape", "ellipse");
+      t.insert("semi_axes", toml::array{p.a, p.b});
+      t.insert("angle", p.angle);
+    }
+    t.insert("center", toml::array{p.x, p.y});
+    t.insert("mu_s", sp.mu_s);
+    t.insert("density", sp.density);
+    t.insert("viscosity", sp.viscosity);
+    t.insert("velocity", "fluid");
+    arr->push_back(std::move(t));
+  }
+}
+
 // ---------------------------------------------------------------------------------------
 // the state at the start: everything the run would otherwise find only after the output
 // directory was made (exit 2 here, before anything is written)
@@ -1431,6 +1507,7 @@ Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>&
   parse_tracers(ctx, top, cfg);
   parse_solids_options(ctx, top, cfg);  // after parse_solver: the solids need cfg.flow
   check_implicit_reach(ctx, top, cfg);  // after parse_solids_options: checked against the band
+  parse_suspension(ctx, root, top, cfg);  // before parse_solids: its particles are [[solid]] tables
   parse_solids(ctx, top, cfg);
   parse_contact(ctx, top, cfg);  // after parse_solids_options: the range is checked against the band
   check_start_state(ctx, top, cfg);

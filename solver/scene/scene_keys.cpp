@@ -9,6 +9,7 @@
 
 #include "solver/model/config.hpp"
 #include "solver/scene/option_names.hpp"
+#include "solver/scene/suspension.hpp"
 
 namespace refmap {
 
@@ -105,6 +106,7 @@ std::vector<KeyDef> build_keys() {
   const ContactOptions& dc = d.contact;
   const InitialVelocity& di = d.init;
   const SideBc db;
+  const SuspensionSpec dsu;
   using KT = KeyType;
   const std::vector<std::string> kRectangle = {"rounded_rectangle"}, kNotTabulated = {"circle", "ellipse",
                                                                                        "rounded_rectangle", "zalesak"};
@@ -427,6 +429,28 @@ std::vector<KeyDef> build_keys() {
                         "g(t): then sheared, x += g y (A = diag(s, 1/s) [[1, g], [0, 1]])"),
                     "`0`"),
 
+      integer("suspension", "count", dsu.count, ge(0, "0: from `area_fraction`"),
+              "number of particles; give this or `area_fraction`"),
+      num("suspension", "area_fraction", dsu.area_fraction, in(0, false, 0.9069, false),
+          "sum of the particle areas over the domain's area; the count that comes closest is placed (within half "
+          "a particle's area); give this or `count`"),
+      num("suspension", "radius", std::nullopt, gt(0), "particle radius (of the first size)"),
+      num("suspension", "radius2", dsu.radius2, ge(0, "0: one size"), "radius of the second size (0: one size)"),
+      num("suspension", "fraction2", dsu.fraction2, in(0, false, 1, false),
+          "share of the particles, by number, of the second size"),
+      num("suspension", "aspect", dsu.aspect, ge(1),
+          "a / b: ellipses of the disc's area (a = r sqrt(aspect), b = r / sqrt(aspect)) at random angles; 1: discs"),
+      integer("suspension", "seed", dsu.seed, ge(0), "seed of the placement: the same seed gives the same particles"),
+      num("suspension", "gap", dsu.gap, ge(0),
+          "least distance between particle surfaces, and from a wall, in units of `radius` (across the periodic "
+          "sides too)"),
+      integer("suspension", "attempts", dsu.attempts, ge(1),
+              "random positions tried per particle before the placement gives up (exit 2 with the fraction reached)"),
+      str("suspension", "name", dsu.name, "particle i is the solid named <name><i>"),
+      num("suspension", "mu_s", std::nullopt, ge(0), "each particle's `mu_s` (shear modulus G = 2 mu_s)"),
+      num("suspension", "density", std::nullopt, gt(0), "each particle's `density`"),
+      num("suspension", "viscosity", dsu.viscosity, ge(0), "each particle's (Kelvin-Voigt) `viscosity`"),
+
       boolean("contact", "enabled", dc.enabled, "contact force on (the gaps and events are reported either way)"),
       boolean("contact", "walls", dc.walls,
               "also repulsion from the no_slip, moving_wall and free_slip sides (periodic sides never repel)"),
@@ -495,6 +519,11 @@ const std::vector<TableDef>& scene_tables() {
       {"solid.actuation", "`solid.actuation` as an inline table", false, false, true,
        "Expressions of `t` (see *Expressions*); the stress is that of the elastic part F A(t)^-1 of the deformation, so "
        "the solid relaxes towards its reference shape mapped by A(t) (docs/actuation.md)."},
+      {"suspension", "`[suspension]`", false, false, false,
+       "Particles at random positions without overlap (random sequential addition, solver/scene/suspension.hpp), "
+       "expanded at load into soft `[[solid]]` tables named `<name><i>` (circles, or ellipses with `aspect` > 1) "
+       "that start with the fluid's velocity. Deterministic from `seed`. A fraction the placement cannot reach "
+       "in `attempts` tries per particle is an error (exit 2) naming the fraction reached."},
       {"contact", "`[contact]`", false, false, false,
        "On by default whenever there are solids and `solver.flow = \"solve\"`."},
   };

@@ -1,0 +1,226 @@
+// Suspensions of soft particles in a shear cell (issue 27, items 2 and 3):
+//  - Placement.*: the random placement of [suspension] (solver/scene/suspension.hpp), expanded at
+//    load into [[solid]] tables: the same seed gives the same particles bit for bit (and the
+//    engine is the standard's), different seeds differ, the area fraction is the request's
+//    within one particle's area, no two particles come closer than the gap (across the
+//    periodic sides too) nor any closer to a wall, and a fraction the placement cannot reach
+//    is an error naming the key and the fraction reached;
+//  - ShearSuspension.*: a free, stiff soft disc at the centre of the shear cell: its dilute
+//    coefficient (above the 2-D Einstein value at this resolution), and a softer one a lower
+//    relative viscosity.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <string>
+
+#include "solver/scene/scene.hpp"
+#include "solver/model/simulation.hpp"
+#include "solver/scene/suspension.hpp"
+
+namespace refmap {
+namespace {
+
+/// The shear cell of bench/scenes/shear_suspension.toml: 2 x 1, walls at -1/2 and +1/2,
+/// periodic along x, mu = rho = 1, started from the undisturbed shear, implicit viscosity.
+std::string shear_cell(int nx, double t_end, const std::string& extra) {
+  return "name = \"suspension\"\n[domain]\nlx = 2.0\nly = 1.0\n[grid]\nnx = " + std::to_string(nx) +
+         "\nny = " + std::to_string(nx / 2) +
+         "\n[fluid]\ndensity = 1.0\nviscosity = 1.0\n"
+         "[boundary]\nleft = \"periodic\"\nright = \"periodic\"\n"
+         "bottom = { type = \"moving_wall\", velocity = -0.5 }\ntop = { type = \"moving_wall\", velocity = 0.5 }\n"
+         "[initial]\nvelocity = \"expression\"\nu_expr = \"y - 0.5\"\nv_expr = \"0\"\n"
+         "[time]\nend = " + std::to_string(t_end) + "\nviscous = \"implicit\"\n[output]\nwall_stress = true\n" + extra;
+}
+
+std::string suspension(const std::string& keys, double radius = 0.1) {
+  return shear_cell(64, 1.0, "[suspension]\nradius = " + std::to_string(radius) +
+                                 "\nmu_s = 50.0\ndensity = 1.0\nviscosity = 1.0\n" + keys);
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    load_scene_string(text, "suspension.toml", {});
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+double solid_area(const SolidSpec& s) {
+  return s.shape.kind == ShapeKind::Circle ? M_PI * s.shape.radius * s.shape.radius : M_PI * s.shape.a * s.shape.b;
+}
+
+double area_fraction(const Config& cfg) {
+  double a = 0.0;
+  for (const auto& s : cfg.solids) a += solid_area(s);
+  return a / (cfg.grid.lx() * cfg.grid.ly());
+}
+
+/// The centre-to-centre distance by the nearest image along the periodic x (period 2).
+double distance(const SolidSpec& p, const SolidSpec& q) {
+  double dx = q.shape.cx - p.shape.cx;
+  dx -= 2.0 * std::round(dx / 2.0);
+  return std::hypot(dx, q.shape.cy - p.shape.cy);
+}
+
+TEST(Placement, GeneratorIsTheStandardOne) {
+  // C++ [rand.predef]: the 10000th output of a default-constructed mt19937_64 is fixed, so the
+  // placement's draws are the same with every standard library
+  std::mt19937_64 rng;
+  rng.discard(9999);
+  const std::uint64_t draw = rng();
+  EXPECT_EQ(draw, 9981545732273789042ULL);
+  // its top 53 bits over 2^53: exact in double
+  EXPECT_EQ(uniform01(draw), double(9981545732273789042ULL >> 11) / 9007199254740992.0);
+  EXPECT_EQ(uniform01(0), 0.0);
+  EXPECT_LT(uniform01(~0ULL), 1.0);
+}
+
+TEST(Placement, SameSeedGivesTheSameParticlesBitForBit) {
+  const Config a = load_scene_string(suspension("area_fraction = 0.3\nseed = 7\n"), "a.toml");
+  const Config b = load_scene_string(suspension("area_fraction = 0.3\nseed = 7\n"), "b.toml");
+  ASSERT_EQ(a.solids.size(), b.solids.size());
+  ASSERT_GT(a.solids.size(), 10u);
+  for (std::size_t k = 0; k < a.solids.size(); ++k) {
+    const ShapeParams &p = a.solids[k].shape, &q = b.solids[k].shape;
+    EXPECT_EQ(std::memcmp(&p.cx, &q.cx, sizeof p.cx), 0);
+    EXPECT_EQ(std::memcmp(&p.cy, &q.cy, sizeof p.cy), 0);
+    EXPECT_EQ(std::memcmp(&p.radius, &q.radius, sizeof p.radius), 0);
+    EXPECT_EQ(a.solids[k].name, "p" + std::to_string(k));
+    EXPECT_EQ(a.solids[k].mu_s, 50.0);
+    EXPECT_EQ(a.solids[k].velocity, SolidVelocity::Fluid);
+  }
+}
+
+TEST(Placement, DifferentSeedsDiffer) {
+  const Config a = load_scene_string(suspension("count = 10\nseed = 1\n"), "a.toml");
+  const Config b = load_scene_string(suspension("count = 10\nseed = 2\n"), "b.toml");
+  ASSERT_EQ(a.solids.size(), 10u);
+  ASSERT_EQ(b.solids.size(), 10u);
+  int same = 0;
+  for (std::size_t k = 0; k < 10; ++k) same += a.solids[k].shape.cx == b.solids[k].shape.cx;
+  EXPECT_EQ(same, 0);
+}
+
+TEST(Placement, AreaFractionWithinOneParticle) {
+  const double cell = 2.0;  // the domain's area
+  for (const double phi : {0.05, 0.2, 0.4}) {
+    const Config c = load_scene_string(suspension("area_fraction = " + std::to_string(phi) + "\n"), "phi.toml");
+    EXPECT_NEAR(area_fraction(c), phi, M_PI * 0.01 / cell) << "phi = " << phi;
+  }
+  // two sizes, half of each by number; and ellipses of the disc's area
+  const Config two = load_scene_string(suspension("area_fraction = 0.3\nradius2 = 0.06\n"), "two.toml");
+  EXPECT_NEAR(area_fraction(two), 0.3, M_PI * 0.01 / cell);
+  int small = 0;
+  for (const auto& s : two.solids) small += s.shape.radius == 0.06;
+  EXPECT_NEAR(small, 0.5 * double(two.solids.size()), 0.5 + 1e-12);
+  const Config ell = load_scene_string(suspension("area_fraction = 0.3\naspect = 2.0\n"), "ellipses.toml");
+  EXPECT_NEAR(area_fraction(ell), 0.3, M_PI * 0.01 / cell);
+  for (const auto& s : ell.solids) {
+    EXPECT_EQ(s.shape.kind, ShapeKind::Ellipse);
+    EXPECT_NEAR(s.shape.a / s.shape.b, 2.0, 1e-12);
+  }
+}
+
+TEST(Placement, NoOverlapsAcrossThePeriodicSidesOrWithTheWalls) {
+  const double gap = 0.1 * 0.1;  // suspension.gap (default 0.1) radii
+  const Config c = load_scene_string(suspension("area_fraction = 0.4\nseed = 3\n"), "dense.toml");
+  ASSERT_GT(c.solids.size(), 20u);
+  int crossing = 0;
+  for (std::size_t i = 0; i < c.solids.size(); ++i) {
+    const ShapeParams& p = c.solids[i].shape;
+    EXPECT_GE(p.cy - p.radius, gap * (1 - 1e-12));
+    EXPECT_LE(p.cy + p.radius, 1.0 - gap * (1 - 1e-12));
+    crossing += p.cx - p.radius < 0.0 || p.cx + p.radius > 2.0;
+    for (std::size_t j = i + 1; j < c.solids.size(); ++j)
+      EXPECT_GE(distance(c.solids[i], c.solids[j]), p.radius + c.solids[j].shape.radius + gap * (1 - 1e-12))
+          << i << ", " << j;
+  }
+  EXPECT_GT(crossing, 0) << "this seed was picked for a particle across the periodic side";
+}
+
+TEST(Placement, EllipsesDoNotOverlap) {
+  const Config c = load_scene_string(suspension("area_fraction = 0.3\naspect = 3.0\nseed = 5\n"), "ell.toml");
+  ASSERT_GT(c.solids.size(), 10u);
+  // 2000 points on each ellipse's boundary, none inside another ellipse (nearest image)
+  for (const auto& sp : c.solids)
+    for (const auto& sq : c.solids) {
+      if (&sp == &sq) continue;
+      const ShapeParams &p = sp.shape, &q = sq.shape;
+      for (int k = 0; k < 2000; ++k) {
+        const double t = 2 * M_PI * k / 2000, lx = p.a * std::cos(t), ly = p.b * std::sin(t);
+        double x = p.cx + std::cos(p.angle) * lx - std::sin(p.angle) * ly - q.cx;
+        const double y = p.cy + std::sin(p.angle) * lx + std::cos(p.angle) * ly - q.cy;
+        x -= 2.0 * std::round(x / 2.0);
+        const double X = std::cos(q.angle) * x + std::sin(q.angle) * y, Y = -std::sin(q.angle) * x + std::cos(q.angle) * y;
+        ASSERT_GE((X / q.a) * (X / q.a) + (Y / q.b) * (Y / q.b), 1.0) << sp.name << " enters " << sq.name;
+      }
+    }
+}
+
+TEST(Placement, UnreachableFractionIsAnErrorNamingTheFractionReached) {
+  const std::string msg = error_of(suspension("area_fraction = 0.7\nattempts = 2000\n"));
+  EXPECT_NE(msg.find("suspension.area_fraction"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("reached area fraction"), std::string::npos) << msg;
+  // above the densest packing: the key's range
+  EXPECT_NE(error_of(suspension("area_fraction = 0.95\n")).find("suspension.area_fraction"), std::string::npos);
+  // count and fraction together, or neither
+  EXPECT_NE(error_of(suspension("area_fraction = 0.2\ncount = 3\n")).find("give exactly one"), std::string::npos);
+  EXPECT_NE(error_of(suspension("")).find("give exactly one"), std::string::npos);
+  // a particle wider than the gap between the walls
+  EXPECT_NE(error_of(suspension("count = 1\n", 0.6)).find("suspension.count"), std::string::npos);
+}
+
+TEST(Placement, ExplicitSolidOverlappingAParticleIsRefused) {
+  // the particles are ordinary solids: the start check refuses an overlap with another solid
+  const Config c = load_scene_string(suspension("count = 1\nseed = 1\n"), "one.toml");
+  const ShapeParams& p = c.solids.at(0).shape;
+  const std::string msg = error_of(suspension("count = 1\nseed = 1\n") +
+                                   "[[solid]]\nname = \"wall_disc\"\nshape = \"circle\"\ncenter = [" +
+                                   std::to_string(p.cx) + ", " + std::to_string(p.cy) +
+                                   "]\nradius = 0.05\nmu_s = 1.0\ndensity = 1.0\n");
+  EXPECT_NE(msg.find("overlaps solid"), std::string::npos) << msg;
+}
+
+// ---- the dilute limit, with a free particle
+
+/// eta_r at the end of a run of one free disc of radius 0.1 at the centre of the cell.
+double eta_of_one_disc(double mu_s, int nx, double t_end) {
+  const Config cfg = load_scene_string(
+      shear_cell(nx, t_end,
+                 "[[solid]]\nname = \"disc\"\nshape = \"circle\"\ncenter = [1.0, 0.5]\nradius = 0.1\nmu_s = " +
+                     std::to_string(mu_s) + "\ndensity = 1.0\nviscosity = 1.0\nvelocity = \"fluid\"\n"),
+      "one_disc.toml");
+  Simulation sim(cfg);
+  while (sim.time() < cfg.t_end - 1e-12) sim.step();
+  std::vector<double> v;
+  for (const auto& c : sim.components()) c->values(sim, v);
+  return v.at(2);
+}
+
+// One free stiff disc on the centre line (it stays there by symmetry). The pinned rigid disc
+// of ShearCell gives (eta_r - 1)/phi = 2.07 in this cell (2 + the walls' (a/H)^2 correction,
+// results/shear_cell.csv). The soft solid's blended interface thickens the particle: measured
+// 2.584 here (6.4 cells per radius, t = 1) and 2.418 at 256 x 128 (12.8 cells per radius,
+// t = 0.5), i.e. an effective radius about 0.7 dx larger, falling with dx. So the issue's 10 %
+// goal on the dilute coefficient is NOT met by a free soft particle at this resolution
+// (results/suspension.md); the bound below (2 to 2.8: the Einstein value from above, with the
+// measured excess and a margin of 0.2) guards the measured value against regressions.
+TEST(ShearSuspension, StiffFreeDiscCoefficientAboveEinsteinAtThisResolution) {
+  // a/H = 0.1, phi = pi a^2 / (2 x 1) = 0.0157; Ca = mu gamma / G = 0.01 (mu_s = 50)
+  const double phi = M_PI * 0.01 / 2.0;
+  const double eta = eta_of_one_disc(50.0, 128, 1.0);
+  const double coefficient = (eta - 1.0) / phi;
+  EXPECT_GT(coefficient, 2.0) << "eta_r = " << eta;
+  EXPECT_LT(coefficient, 2.8) << "eta_r = " << eta;
+}
+
+TEST(ShearSuspension, SofterDiscThinsTheSuspension) {
+  const double stiff = eta_of_one_disc(50.0, 128, 1.0), soft = eta_of_one_disc(2.5, 128, 1.0);
+  EXPECT_LT(soft, stiff);
+}
+
+}  // namespace
+}  // namespace refmap
