@@ -2,7 +2,6 @@
 #include "solver/poisson_multigrid.hpp"
 
 #include "solver/multigrid_coarse.hpp"
-#include "solver/option_names.hpp"
 
 #include <omp.h>
 

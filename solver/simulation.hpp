@@ -140,7 +140,8 @@ class Simulation {
   void register_state();
   /// The solids', the contact tracker's and the rigid bodies' records (solver/checkpoint.cpp).
   void register_solids_state();
-  /// The scene's components (tracers, markers, actuation), in the order of their hooks.
+  /// The scene's components (Config::components, each made by its kind:
+  /// solver/component_kind.hpp), in the order of their hooks.
   void add_components();
   /// Calls every component's hook at point p, timed under the component's name.
   void call_components(StepPoint p, double dt);
