@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs every shipped scene for a fixed number of steps with one binary and writes each
-# run's diagnostics.csv (wall_time column removed), solids.csv, events.csv and last VTK frame to OUT; with a second
+# run's diagnostics.csv (wall_time column removed), solids.csv, events.csv, tracers.csv, markers.csv and last VTK frame to OUT; with a second
 # directory, compares two such sets byte for byte. Used to show that a refactor keeps
 # the scenes' output identical.
 #   bash scripts/compare_scenes.sh run BINARY OUT [STEPS]   (STEPS default 40; THREADS=N
@@ -24,6 +24,9 @@ case "${1:-}" in
       fi
       [ -f "$out/run_$name/events.csv" ] && cp "$out/run_$name/events.csv" "$out/$name.events.csv"
       [ -f "$out/run_$name/solids.csv" ] && grep -v '^#' "$out/run_$name/solids.csv" > "$out/$name.solids.csv"
+      for f in tracers markers; do
+        [ -f "$out/run_$name/$f.csv" ] && grep -v '^#' "$out/run_$name/$f.csv" > "$out/$name.$f.csv"
+      done
       # the last frame holds every field in full precision
       last=$(ls "$out/run_$name"/frame_*.vti 2>/dev/null | tail -1 || true)
       [ -n "$last" ] && cp "$last" "$out/$name.last.vti"
@@ -32,7 +35,7 @@ case "${1:-}" in
     ;;
   diff)
     a=$2; b=$3; bad=0
-    for f in "$a"/*.diag.csv "$a"/*.solids.csv "$a"/*.events.csv "$a"/*.last.vti; do
+    for f in "$a"/*.diag.csv "$a"/*.solids.csv "$a"/*.events.csv "$a"/*.tracers.csv "$a"/*.markers.csv "$a"/*.last.vti; do
       [ -e "$f" ] || continue
       g="$b/$(basename "$f")"
       if cmp -s "$f" "$g"; then echo "same      $(basename "$f")"; else echo "DIFFERENT $(basename "$f")"; bad=1; fi

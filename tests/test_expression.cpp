@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "solver/model/expression.hpp"
+#include "solver/io/expression.hpp"
 
 using refmap::Expression;
 

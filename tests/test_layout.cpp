@@ -33,11 +33,8 @@ int layer_of(const std::string& rel) {
 }
 
 // Includes that still run up, each with the reason it is allowed for now.
-const std::set<std::pair<std::string, std::string>> kKnownUpward = {
-    // the Poisson solvers name their options (MgSmoother, MgCycle) with the scene's table
-    {"solver/pressure/poisson_cg.cpp", "solver/scene/option_names.hpp"},
-    {"solver/pressure/poisson_multigrid.cpp", "solver/scene/option_names.hpp"},
-};
+// (none today: keep it that way)
+const std::set<std::pair<std::string, std::string>> kKnownUpward = {};
 
 TEST(Layout, NoIncludeRunsUpTheLayers) {
   const fs::path root(REFMAP_SOURCE_DIR);

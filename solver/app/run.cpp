@@ -264,6 +264,8 @@ class RunOutput {
         scalars.push_back({"stress_yy", &sim_.solid_stress_yy()});
       }
     }
+    for (const auto& c : sim_.components())  // the components' own fields (solver/model/component.hpp)
+      for (const auto& [field_name, f] : c->frame_fields()) scalars.push_back({field_name, f});
     write_vti((fs::path(dir_) / name).string(), sim_.grid(), scalars, vectors, sim_.time());
   }
 

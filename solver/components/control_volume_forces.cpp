@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <climits>
 
+#include <memory>
+
 #include "kernels/loop.hpp"
+#include "solver/model/component_kind.hpp"
 #include "solver/model/simulation.hpp"
+#include "solver/io/toml_reader.hpp"
 
 namespace refmap {
 
@@ -117,6 +121,46 @@ void ControlVolumeForces::end_step(const Simulation& sim, double dt) {
     L.fy = 0.5 * (s0[1] + s1[1]) - (p1[1] - p0[1]) / dt - c.rho_f * c.gy * V;
     L.torque = 0.5 * (s0[2] + s1[2]) - (p1[2] - p0[2]) / dt - c.rho_f * (Vx * c.gy - Vy * c.gx);
   }
+}
+
+std::span<const OptionName<BodyForceEstimator>> option_names(BodyForceEstimator) {
+  static const OptionName<BodyForceEstimator> n[] = {{BodyForceEstimator::Forcing, "forcing"},
+                                                     {BodyForceEstimator::ControlVolume, "control_volume"}};
+  return name_list(n);
+}
+
+namespace {
+
+/// output.body_force = "control_volume": on (no options beyond that); "forcing": off (null).
+std::shared_ptr<const ComponentOptions> parse_body_force(const TomlTable& top, const Config&) {
+  const toml::table* t = top.table("output", false);
+  if (!t) return nullptr;
+  const TomlTable o = top.sub(*t, "output", "output");
+  if (o.option<BodyForceEstimator>("body_force") != BodyForceEstimator::ControlVolume) return nullptr;
+  return std::make_shared<ComponentOptions>();
+}
+
+/// Only with bodies and a flow that is solved (a prescribed flow has no momentum balance).
+std::unique_ptr<Component> make_control_volume_forces(const ComponentOptions&, Simulation& sim) {
+  if (sim.solids().empty() || sim.config().flow != FlowMode::Solve) return nullptr;
+  return std::make_unique<ControlVolumeForces>(sim);
+}
+
+}  // namespace
+
+ComponentKind control_volume_forces_kind() {
+  ComponentKind k;
+  k.name = "body forces";
+  k.keys = {keys::choice<BodyForceEstimator>(
+      "output", "body_force", BodyForceEstimator::Forcing,
+      "the force in `solid<k>_fx`, `_fy`, `_torque`: `\"forcing\"`, a rigid body's direct "
+      "forcing; `\"control_volume\"`, every unclamped solid's (a rigid body with its "
+      "clamped solids), from the fluid's momentum balance on a box around it "
+      "(docs/bodies.md)")};
+  k.after = "output.wall_stress";
+  k.parse = parse_body_force;
+  k.make = make_control_volume_forces;
+  return k;
 }
 
 }  // namespace refmap

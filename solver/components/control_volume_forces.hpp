@@ -19,14 +19,24 @@
 // This is the force the fluid exerts on everything inside the box except the fluid,
 // buoyancy included, the bodies' weight and any support (the forcing) excluded.
 #include <array>
+#include <span>
 #include <vector>
 
 #include "core/field.hpp"
 #include "kernels/control_volume.hpp"
 #include "solver/model/component.hpp"
+#include "solver/io/enum_names.hpp"
 #include "solver/model/rigid_body.hpp"
 
 namespace refmap {
+
+/// output.body_force: the force written as solidK_fx, _fy, _torque. Forcing: a rigid
+/// body's, the momentum its direct forcing adds (solver/model/rigid_body.hpp); ControlVolume:
+/// every body's, from this component. The key and its parser are this component's kind
+/// (control_volume_forces_kind in control_volume_forces.cpp); the scene adds the component
+/// with ControlVolume.
+enum class BodyForceEstimator { Forcing, ControlVolume };
+std::span<const OptionName<BodyForceEstimator>> option_names(BodyForceEstimator);
 
 class Simulation;
 

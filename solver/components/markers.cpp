@@ -2,18 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "solver/io/checkpoint_io.hpp"
+#include "solver/model/component_kind.hpp"
 #include "solver/model/simulation.hpp"
 #include "solver/io/state_registry.hpp"
+#include "solver/io/toml_reader.hpp"
 
 namespace refmap {
 
-std::vector<std::array<double, 2>> marker_reference_points(const SolidSpec& spec, const Shape& shape) {
-  std::vector<std::array<double, 2>> pts = spec.markers;
-  const int n = spec.boundary_markers;
+std::vector<std::array<double, 2>> marker_reference_points(const SolidMarkers& m, const Shape& shape) {
+  std::vector<std::array<double, 2>> pts = m.points;
+  const int n = m.boundary;
   if (n <= 0) return pts;
   const BoundingBox bb = shape.bbox();
   const double cx = 0.5 * (bb.xmin + bb.xmax), cy = 0.5 * (bb.ymin + bb.ymax);
@@ -65,9 +68,9 @@ bool solve_material_point(const Solid& s, const Grid& g, double X, double Y, dou
   return false;
 }
 
-Markers::Markers(const std::vector<std::unique_ptr<Solid>>& solids, const Grid& g) : g_(g) {
-  for (std::size_t s = 0; s < solids.size(); ++s) {
-    const auto ref = marker_reference_points(solids[s]->spec(), solids[s]->shape());
+Markers::Markers(const std::vector<std::unique_ptr<Solid>>& solids, const Grid& g, const MarkerOptions& opt) : g_(g) {
+  for (std::size_t s = 0; s < solids.size() && s < opt.per_solid.size(); ++s) {
+    const auto ref = marker_reference_points(opt.per_solid[s], solids[s]->shape());
     for (std::size_t k = 0; k < ref.size(); ++k) {
       // xi = X at t = 0 (eq. 3.2's initial condition), so x = X
       pts_.push_back({int(s), int(k), ref[k][0], ref[k][1], ref[k][0], ref[k][1]});
@@ -114,6 +117,67 @@ void Markers::register_state(StateRegistry& reg) {
 
 void Markers::at(StepPoint p, Simulation& sim, double) {
   if (p == StepPoint::End) update(sim.solids());
+}
+
+namespace {
+
+using namespace toml_text;
+
+/// The `markers` and `boundary_markers` of every [[solid]] (null: no solid has any). Each
+/// point must lie in its solid's reference configuration, and the boundary points need the
+/// centre of the shape's bounding box inside the shape (the rays start there).
+std::shared_ptr<const ComponentOptions> parse_markers(const TomlTable& top, const Config& cfg) {
+  if (cfg.solids.empty()) return nullptr;
+  const toml::array* arr = top.node("solid")->as_array();  // the core checked it is one
+  auto opt = std::make_shared<MarkerOptions>();
+  bool any = false;
+  for (std::size_t i = 0; i < cfg.solids.size(); ++i) {
+    const TomlTable s = top.sub(*arr->get(i)->as_table(), "solid[" + std::to_string(i) + "]", "solid");
+    SolidMarkers m;
+    m.points = s.points("markers");
+    m.boundary = int(s.integer("boundary_markers"));
+    if (!m.points.empty() || m.boundary > 0) {
+      const std::unique_ptr<Shape> shape = make_shape(cfg.solids[i].shape);  // the core built it once already
+      const double dx = cfg.grid.dx;
+      for (const auto& p : m.points)
+        s.require(shape->phi0(p[0], p[1]) <= 1e-6 * dx, "markers",
+                  "point [" + fmt_num(p[0]) + ", " + fmt_num(p[1]) + "] is not in the solid's reference configuration");
+      if (m.boundary > 0) {
+        const BoundingBox mb = shape->bbox();
+        s.require(shape->phi0(0.5 * (mb.xmin + mb.xmax), 0.5 * (mb.ymin + mb.ymax)) < 0.0, "boundary_markers",
+                  "the centre of the shape's bounding box lies outside the shape: give the points with `markers`");
+      }
+      any = true;
+    }
+    opt->per_solid.push_back(std::move(m));
+  }
+  if (!any) return nullptr;
+  return opt;
+}
+
+std::unique_ptr<Component> make_markers(const ComponentOptions& o, Simulation& sim) {
+  return std::make_unique<Markers>(sim.solids(), sim.grid(), static_cast<const MarkerOptions&>(o));
+}
+
+}  // namespace
+
+ComponentKind markers_kind() {
+  using namespace keys;
+  ComponentKind k;
+  k.name = "markers";
+  k.keys = {
+      shown_default(key("solid", "markers", KeyType::Points, {}, text_range("points of the reference configuration"),
+                        "material points (X, Y) of the reference configuration, followed through xi and written to "
+                        "`markers.csv` (docs/tracers.md)"),
+                    "none"),
+      integer("solid", "boundary_markers", SolidMarkers{}.boundary, ge(0),
+              "also this many material points on the reference boundary, at equal angles about the centre of "
+              "the shape's bounding box (which must lie inside the shape)"),
+  };
+  k.after = "solid.clamp";
+  k.parse = parse_markers;
+  k.make = make_markers;
+  return k;
 }
 
 }  // namespace refmap

@@ -4,7 +4,9 @@
 // takes that value, xi(x) = X (eq. 2.1: xi is the inverse of the motion). Found by Newton's
 // method on the bilinear interpolant of xi over the solid's window, started from the
 // marker's previous position (it moves less than a cell per step). Written to markers.csv
-// at every output frame (docs/tracers.md).
+// at every output frame (docs/tracers.md). An optional component: its keys, parser and
+// factory are its kind (markers_kind in markers.cpp, registered in
+// solver/model/component_kind.cpp).
 #include <array>
 #include <memory>
 #include <vector>
@@ -17,11 +19,23 @@ namespace refmap {
 class CheckpointWriter;
 class CheckpointReader;
 
+/// The material points a [[solid]] asks for: `markers` (reference positions) and
+/// `boundary_markers` (how many on the reference boundary).
+struct SolidMarkers {
+  std::vector<std::array<double, 2>> points;
+  int boundary = 0;
+};
+
+/// The options of the kind "markers": one entry per solid, in scene order.
+struct MarkerOptions : ComponentOptions {
+  std::vector<SolidMarkers> per_solid;
+};
+
 /// The reference points of a solid: its `markers` list, then `boundary_markers` points on
 /// phi0 = 0 at equal angles about the centre of the shape's bounding box (found by
 /// bisection along each ray; the shape must contain that centre and be star-shaped about
 /// it, which the loader checks for the centre).
-std::vector<std::array<double, 2>> marker_reference_points(const SolidSpec& spec, const Shape& shape);
+std::vector<std::array<double, 2>> marker_reference_points(const SolidMarkers& m, const Shape& shape);
 
 /// Solves xi(x) = X on a solid's window (bilinear interpolant of its xi, ghost layers
 /// included) by Newton's method from (x, y); returns false if it did not converge to
@@ -31,7 +45,7 @@ bool solve_material_point(const Solid& s, const Grid& g, double X, double Y, dou
 /// A component (solver/model/component.hpp): the points move at the end of every step.
 class Markers : public Component {
  public:
-  explicit Markers(const std::vector<std::unique_ptr<Solid>>& solids, const Grid& g);
+  Markers(const std::vector<std::unique_ptr<Solid>>& solids, const Grid& g, const MarkerOptions& opt);
   bool empty() const { return count_ == 0; }
   /// New positions from the current xi of every solid.
   void update(const std::vector<std::unique_ptr<Solid>>& solids);

@@ -1,13 +1,18 @@
 #include "solver/components/tracers.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "kernels/rk4.hpp"
+#include "solver/model/boundary.hpp"
 #include "solver/io/checkpoint_io.hpp"
+#include "solver/model/component_kind.hpp"
 #include "solver/model/probes.hpp"
 #include "solver/model/simulation.hpp"
 #include "solver/io/state_registry.hpp"
+#include "solver/io/toml_reader.hpp"
 
 namespace refmap {
 
@@ -104,6 +109,90 @@ void Tracers::at(StepPoint p, Simulation& sim, double dt) {
     sim.apply_velocity_bc(u1_, v1_, sim.time());
     advance(u1_, v1_, dt);
   }
+}
+
+namespace {
+
+using namespace toml_text;
+
+/// The [[tracers]] tables of the scene into their seeds (null: none).
+std::shared_ptr<const ComponentOptions> parse_tracers(const TomlTable& top, const Config& cfg) {
+  const TomlContext& ctx = top.context();
+  const toml::node* n = top.node("tracers");
+  if (!n) return nullptr;
+  auto opt = std::make_shared<TracerOptions>();
+  const toml::array* arr = n->as_array();
+  if (!arr) top.fail("tracers", "expected an array of tables ([[tracers]] sections), got " + describe(*n));
+  const Grid& g = cfg.grid;
+  const double tol = 1e-12 * std::max(g.lx(), g.ly());
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    const std::string prefix = "tracers[" + std::to_string(i) + "]";
+    const toml::table* t = arr->get(i)->as_table();
+    if (!t) ctx.fail(prefix, arr->get(i), "expected a table ([[tracers]] section), got " + describe(*arr->get(i)));
+    const TomlTable p = top.sub(*t, prefix, "tracers");
+    p.allow();
+    TracerSeed sd;
+    sd.box = p.has("box");
+    const char* key = sd.box ? "box" : "line";
+    if (sd.box && p.has("line")) p.fail("line", "give either `line` (with `n`) or `box` (with `nx`, `ny`), not both");
+    if (!sd.box && !p.has("line")) ctx.fail(prefix, t, "needs `line` (with `n`) or `box` (with `nx`, `ny`)");
+    if (const char* other = sd.box ? "n" : (p.has("nx") ? "nx" : p.has("ny") ? "ny" : nullptr); other && p.has(other))
+      p.fail(other, std::string("not used with `") + key + "`");
+    const auto pts = p.points(key);
+    p.require(pts.size() == 2, key, "expected two points [[x0, y0], [x1, y1]], got " + std::to_string(pts.size()));
+    for (const auto& xy : pts)
+      p.require(xy[0] >= g.x0 - tol && xy[0] <= g.x0 + g.lx() + tol && xy[1] >= g.y0 - tol && xy[1] <= g.y0 + g.ly() + tol,
+                key, "point [" + fmt_num(xy[0]) + ", " + fmt_num(xy[1]) + "] is outside the domain [" + fmt_num(g.x0) +
+                         ", " + fmt_num(g.x0 + g.lx()) + "] x [" + fmt_num(g.y0) + ", " + fmt_num(g.y0 + g.ly()) + "]");
+    sd.x0 = std::clamp(pts[0][0], g.x0, g.x0 + g.lx());
+    sd.y0 = std::clamp(pts[0][1], g.y0, g.y0 + g.ly());
+    sd.x1 = std::clamp(pts[1][0], g.x0, g.x0 + g.lx());
+    sd.y1 = std::clamp(pts[1][1], g.y0, g.y0 + g.ly());
+    if (sd.box) {
+      sd.nx = int(p.integer("nx"));
+      sd.ny = int(p.integer("ny"));
+    } else {
+      sd.n = int(p.integer("n"));
+    }
+    opt->seeds.push_back(sd);
+  }
+  if (opt->seeds.empty()) return nullptr;
+  return opt;
+}
+
+
+std::unique_ptr<Component> make_tracers(const ComponentOptions& o, Simulation& sim) {
+  const Sides sides = face_sides(sim.config().bc);
+  return std::make_unique<Tracers>(sim.grid(), tracer_seeds(static_cast<const TracerOptions&>(o).seeds),
+                                   sides.periodic_x(), sides.periodic_y());
+}
+
+}  // namespace
+
+ComponentKind tracers_kind() {
+  using namespace keys;
+  using KT = KeyType;
+  ComponentKind k;
+  k.name = "tracers";
+  k.tables = {{{"tracers", "`[[tracers]]`", false, true, false,
+                "Passive fluid tracers, written to `tracers.csv` at every VTK frame (docs/tracers.md). Each table "
+                "seeds a `line` (with `n`) or a `box` (with `nx`, `ny`)."},
+               "probe"}};
+  k.keys = {
+      shown_default(key("tracers", "line", KT::Points, {}, text_range("two points inside the domain"),
+                        "seed `n` tracers on the segment [[x0, y0], [x1, y1]], ends included (give `line` or `box`)"),
+                    "—"),
+      shown_default(integer("tracers", "n", {}, in(1, false, 10000000, false), "number of tracers on `line`"), "—"),
+      shown_default(key("tracers", "box", KT::Points, {}, text_range("two corners inside the domain"),
+                        "seed `nx` x `ny` tracers on the lattice of the box with corners [[x0, y0], [x1, y1]], corners "
+                        "included"),
+                    "—"),
+      shown_default(integer("tracers", "nx", {}, in(1, false, 100000, false), "tracers along x in `box`"), "—"),
+      shown_default(integer("tracers", "ny", {}, in(1, false, 100000, false), "tracers along y in `box`"), "—"),
+  };
+  k.parse = parse_tracers;
+  k.make = make_tracers;
+  return k;
 }
 
 }  // namespace refmap

@@ -3,6 +3,8 @@
 // and carried by the cell velocity, dx/dt = u(x, t), with the RK-4 step of the rest of the
 // code (kernels/rk4.hpp) and the bilinear interpolation of the line probes
 // (solver/model/probes.hpp). Written to tracers.csv at every output frame (docs/tracers.md).
+// An optional component: its keys, parser and factory are its kind (tracers_kind,
+// registered in solver/model/component_kind.cpp).
 #include <vector>
 
 #include "core/field.hpp"
@@ -11,6 +13,20 @@
 #include "solver/model/config.hpp"
 
 namespace refmap {
+
+/// A [[tracers]] table: `n` points on the segment (x0,y0)-(x1,y1), ends included (line),
+/// or nx x ny points on the lattice of the box with corners (x0,y0), (x1,y1) (box).
+struct TracerSeed {
+  bool box = false;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int n = 0, nx = 0, ny = 0;
+};
+
+/// The scene's [[tracers]] tables, in order (the options of the kind "tracers",
+/// solver/model/component_kind.hpp; its keys and parser are in tracers.cpp).
+struct TracerOptions : ComponentOptions {
+  std::vector<TracerSeed> seeds;
+};
 
 class CheckpointWriter;
 class CheckpointReader;

@@ -1,6 +1,7 @@
 #pragma once
 // The shear stress the fluid exerts on the bottom and top walls, and the relative viscosity
-// of a shear cell (output.wall_stress; a component, solver/model/component.hpp).
+// of a shear cell (output.wall_stress; a component, solver/model/component.hpp, whose key and
+// parser are its kind in wall_stress.cpp).
 //
 // On a wall face the tangential stress is sigma_xy = mu (du/dy + dv/dx) with dv/dx = 0
 // along a wall (v = 0 there), taken as the viscous kernel takes it: the difference of the

@@ -7,11 +7,17 @@
 //  * is called at fixed, named points of Simulation::step (StepPoint) - the points stay in
 //    the step's order whatever the order in which components were added; at one point the
 //    components are called in the order they were added,
-//  * may add columns to diagnostics.csv (the values of the current state).
-// Adding one takes its own files and one line where the Simulation builds its components
-// (Simulation::add_components) - or add_component() from outside, as the tests do.
+//  * may add columns to diagnostics.csv (the values of the current state) and cell fields
+//    to the VTK frames.
+// A scene's components are made by their kinds (solver/model/component_kind.hpp: keys, parser,
+// factory), so adding one takes its own files and one registration - or add_component()
+// from outside, as the tests do.
 #include <limits>
+#include <string>
+#include <utility>
 #include <vector>
+
+#include "core/field.hpp"
 
 namespace refmap {
 
@@ -45,6 +51,9 @@ class Component {
   /// Its diagnostics.csv columns (fixed for the run) and their values for the current state.
   virtual std::vector<std::string> columns() const { return {}; }
   virtual void values(const Simulation&, std::vector<double>& /*out*/) const {}
+  /// Its cell fields (name, nx x ny field) written into every VTK frame after the built-in
+  /// ones (solver/app/run.cpp).
+  virtual std::vector<std::pair<std::string, const Field*>> frame_fields() const { return {}; }
 };
 
 }  // namespace refmap

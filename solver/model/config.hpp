@@ -1,10 +1,13 @@
 #pragma once
-// Everything a scene file says, after validation. solver/scene/scene.cpp fills it from TOML;
+// Everything a scene file says, after validation: plain data (it includes only io/, pressure/
+// and model/ headers: tests/test_layout.cpp). solver/scene/scene.cpp fills it from TOML;
 // the time loop (solver/model/simulation.cpp) only reads it. The member initialisers below are
 // the defaults of the scene keys: the key table (solver/scene/scene_keys.cpp) reads them from a
 // default-constructed Config, so the loader and scenes/README.md use these values.
 #include <array>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "kernels/boundary_kind.hpp"
@@ -12,16 +15,16 @@
 #include "kernels/reference_map.hpp"
 #include "kernels/constitutive.hpp"
 #include "core/grid.hpp"
-#include "solver/model/expression.hpp"
+#include "solver/io/expression.hpp"
 #include "solver/pressure/poisson.hpp"
-#include "solver/model/shape.hpp"
+#include "solver/model/shape_params.hpp"
 
 namespace refmap {
 
 enum class BcType { NoSlip, MovingWall, FreeSlip, Periodic, Inflow, Outflow };
 
 // Physics options are enums from the moment the scene is loaded; their scene-file names
-// live in one place, solver/scene/option_names.hpp (to_string / parse_option).
+// are in solver/scene/option_names.hpp (to_string / parse_option of solver/io/enum_names.hpp).
 
 /// Config::flow: solve Navier-Stokes, or impose the initial velocity field at every step.
 enum class FlowMode { Solve, Prescribed };
@@ -38,11 +41,6 @@ enum class SolidMotion { Free, Fixed, Prescribed, Pinned };
 /// Sharp, Interpolated with the cells inside cut out of the pressure solve (their faces carry
 /// the body's velocity and are not corrected).
 enum class BodyForcing { Diffuse, Interpolated, Sharp };
-/// Config::body_force (output.body_force): the force written as solidK_fx, _fy, _torque.
-/// Forcing: a rigid body's, the momentum its direct forcing adds (solver/model/rigid_body.hpp);
-/// ControlVolume: every body's, from a momentum balance of the fluid around it
-/// (solver/components/control_volume_forces.hpp).
-enum class BodyForceEstimator { Forcing, ControlVolume };
 /// SolidsOptions::extrapolation: Algorithm 2 (least squares) or the PDE baseline.
 enum class ExtrapolationMethod { Lsq, Pde };
 /// SolidsOptions::stress_form: discretisation of the solid stress divergence.
@@ -89,28 +87,12 @@ struct ProbeSpec {
   int points = 2;
 };
 
-/// A [[tracers]] table: `n` points on the segment (x0,y0)-(x1,y1), ends included (line),
-/// or nx x ny points on the lattice of the box with corners (x0,y0), (x1,y1) (box).
-struct TracerSeed {
-  bool box = false;
-  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-  int n = 0, nx = 0, ny = 0;
-};
-
 struct InitialVelocity {
   InitialKind kind = InitialKind::Zero;
   double u = 0.0, v = 0.0;    ///< uniform velocity
   double amplitude = 1.0;     ///< Taylor-Green: u = A sin(k(x-x0)) cos(k(y-y0)), v = -A cos sin
   double wavenumber = 0.0;    ///< k; 0 means 2 pi / lx
   std::string u_expr, v_expr; ///< expression kind: functions of x, y (and pi)
-};
-
-/// `actuation` of a [[solid]] (docs/actuation.md): its stress-free configuration is the
-/// reference one mapped by A(t) = diag(s, 1/s) [[1, g], [0, 1]] (det A = 1), s = stretch_x(t),
-/// g = shear(t), expressions of t (kernels/constitutive_actuation.hpp). Empty: not actuated.
-struct ActuationSpec {
-  std::string stretch_x, shear;
-  bool enabled() const { return !stretch_x.empty() || !shear.empty(); }
 };
 
 /// One solid of a scene ([[solid]] tables).
@@ -140,11 +122,6 @@ struct SolidSpec {
   std::string clamp;
   int clamp_index = -1;
   bool rigid() const { return motion != SolidMotion::Free; }
-  /// material points written to markers.csv (solver/components/markers.hpp): reference positions,
-  /// then `boundary_markers` points on the reference boundary
-  std::vector<std::array<double, 2>> markers;
-  int boundary_markers = 0;
-  ActuationSpec actuation;
 };
 
 /// Options shared by all solids ([solids] table).
@@ -183,6 +160,12 @@ struct ContactOptions {
   double range = 2.5;          ///< d_c in cells: the force acts once a gap is below d_c
   double stiffness = 20.0;     ///< contact pressure at zero gap, in units of rho_max U^2
   double velocity_scale = 0.0; ///< U; 0 = automatic (see solver/model/contact.hpp)
+};
+
+/// The options of an optional component, parsed by its kind from the component's own
+/// keys (solver/model/component_kind.hpp); each kind derives its own.
+struct ComponentOptions {
+  virtual ~ComponentOptions() = default;
 };
 
 struct Config {
@@ -231,13 +214,8 @@ struct Config {
   /// and every this many wall minutes (0: not by wall time); refmap run --checkpoint-minutes
   double checkpoint_minutes = 30.0;
   int diagnostics_every = 1;     ///< steps between rows of diagnostics.csv
-  /// output.wall_stress: the shear stress on the bottom and top walls and the relative
-  /// viscosity of a shear cell in diagnostics.csv (solver/components/wall_stress.hpp)
-  bool wall_stress = false;
-  BodyForceEstimator body_force = BodyForceEstimator::Forcing;  ///< output.body_force
   double log_interval_s = 2.0;   ///< wall seconds between log lines when not on a terminal
   std::vector<ProbeSpec> probes;
-  std::vector<TracerSeed> tracers;  ///< passive fluid tracers (solver/components/tracers.hpp)
 
   // solids
   std::vector<SolidSpec> solids;
@@ -247,6 +225,18 @@ struct Config {
   /// possibly of t) is imposed at every step and no flow is solved (kinematic tests such
   /// as the Zalesak disk).
   FlowMode flow = FlowMode::Solve;
+
+  /// The optional components the scene uses (tracers, markers, actuation, ...;
+  /// solver/model/component_kind.hpp), in registration order: the kind's name and the options
+  /// its parser read from the component's own keys. A kind the scene leaves off is absent.
+  std::vector<std::pair<std::string, std::shared_ptr<const ComponentOptions>>> components;
+  /// The options of component kind `kind` (null: the scene does not use it).
+  template <class T>
+  const T* component_options(const std::string& kind) const {
+    for (const auto& [name, o] : components)
+      if (name == kind) return dynamic_cast<const T*>(o.get());
+    return nullptr;
+  }
 };
 
 }  // namespace refmap

@@ -66,7 +66,7 @@
 #include "core/field.hpp"
 #include "core/grid.hpp"
 #include "solver/model/config.hpp"
-#include "solver/model/expression.hpp"
+#include "solver/io/expression.hpp"
 
 namespace refmap {
 

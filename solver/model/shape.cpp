@@ -390,4 +390,20 @@ std::unique_ptr<Shape> make_shape(const ShapeParams& p) {
   throw std::invalid_argument("unknown shape kind " + std::to_string(int(p.kind)));
 }
 
+// The scene-file names (solver/io/enum_names.hpp): the canonical ones in the order of the
+// choices in error messages and in scenes/README.md, then the aliases.
+std::span<const OptionName<ShapeKind>> option_names(ShapeKind) {
+  static const OptionName<ShapeKind> n[] = {
+      {ShapeKind::Circle, "circle"},
+      {ShapeKind::Ellipse, "ellipse"},
+      {ShapeKind::RoundedRectangle, "rounded_rectangle"},
+      {ShapeKind::Zalesak, "zalesak"},
+      {ShapeKind::Tabulated, "tabulated"},
+      {ShapeKind::RoundedRectangle, "rectangle"},  // aliases
+      {ShapeKind::Zalesak, "zalesak_disk"},
+      {ShapeKind::Zalesak, "slotted_disk"},
+  };
+  return name_list(n);
+}
+
 }  // namespace refmap

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "solver/model/shape_params.hpp"
+
 namespace refmap {
 
 /// Axis-aligned extent of a solid in its reference configuration (where phi0 <= 0).
@@ -125,27 +127,6 @@ class Tabulated final : public Shape {
   std::vector<double> v_;
   std::string source_;
   BoundingBox bbox_;
-};
-
-/// Which shape ShapeParams describe (scene names and aliases: solver/scene/option_names.cpp).
-enum class ShapeKind { Circle, Ellipse, RoundedRectangle, Zalesak, Tabulated };
-
-/// Parameters of any shape, as a scene file gives them. `kind` selects which fields
-/// are used:
-///   Circle:           cx, cy, radius
-///   Ellipse:          cx, cy, a, b, angle
-///   RoundedRectangle: cx, cy, half_width, half_height, corner_radius, angle
-///   Zalesak:          cx, cy, radius, slot_half_width, slot_top, angle
-///   Tabulated:        file
-struct ShapeParams {
-  ShapeKind kind = ShapeKind::Circle;
-  double cx = 0.0, cy = 0.0;
-  double radius = 0.0;
-  double a = 0.0, b = 0.0;
-  double half_width = 0.0, half_height = 0.0, corner_radius = 0.0;
-  double slot_half_width = 0.0, slot_top = 0.0;
-  double angle = 0.0;  ///< radians, counter-clockwise
-  std::string file;
 };
 
 /// Builds the shape; throws std::invalid_argument on invalid

@@ -14,14 +14,13 @@
 #include "kernels/rk4.hpp"
 #include "kernels/solid_stress.hpp"
 #include "kernels/viscous.hpp"
-#include "solver/components/actuation.hpp"
 #include "solver/model/boundary.hpp"
+#include "solver/model/component_kind.hpp"
 #include "solver/components/control_volume_forces.hpp"
-#include "solver/model/expression.hpp"
+#include "solver/io/expression.hpp"
 #include "solver/components/markers.hpp"
 #include "solver/model/time_step_limits.hpp"
 #include "solver/components/tracers.hpp"
-#include "solver/components/wall_stress.hpp"
 
 namespace refmap {
 
@@ -96,16 +95,10 @@ void Simulation::register_state() {
 }
 
 void Simulation::add_components() {
-  // the order of the hooks at each step point: actuation first (the stress of the step
-  // needs A(t + dt)), then the tracers (the velocity of the step's start), the markers
-  if (auto a = ActuatedSolids::from_scene(cfg_)) add_component(std::move(a));
-  if (!cfg_.tracers.empty())
-    add_component(std::make_unique<Tracers>(cfg_.grid, tracer_seeds(cfg_.tracers), sides_.periodic_x(),
-                                            sides_.periodic_y()));
-  if (auto m = std::make_unique<Markers>(solids_, cfg_.grid); !m->empty()) add_component(std::move(m));
-  if (cfg_.wall_stress) add_component(std::make_unique<WallStress>(cfg_));
-  if (cfg_.body_force == BodyForceEstimator::ControlVolume && !solids_.empty() && cfg_.flow == FlowMode::Solve)
-    add_component(std::make_unique<ControlVolumeForces>(*this));
+  // the scene's components, each made by its kind (solver/model/component_kind.hpp) in
+  // registration order, which is the order of their hooks at one step point
+  for (const auto& [kind, options] : cfg_.components)
+    if (auto c = component_kind(kind).make(*options, *this)) add_component(std::move(c));
 }
 
 void Simulation::add_component(std::unique_ptr<Component> c) {

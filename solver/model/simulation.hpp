@@ -17,7 +17,7 @@
 #include "solver/model/rigid_body.hpp"
 #include "solver/model/solid.hpp"
 #include "solver/io/state_registry.hpp"
-#include "solver/model/timers.hpp"
+#include "solver/io/timers.hpp"
 
 namespace refmap {
 
@@ -140,7 +140,8 @@ class Simulation {
   void register_state();
   /// The solids', the contact tracker's and the rigid bodies' records (solver/model/checkpoint.cpp).
   void register_solids_state();
-  /// The scene's components (tracers, markers, actuation), in the order of their hooks.
+  /// The scene's components (Config::components, each made by its kind:
+  /// solver/model/component_kind.hpp), in the order of their hooks.
   void add_components();
   /// Calls every component's hook at point p, timed under the component's name.
   void call_components(StepPoint p, double dt);

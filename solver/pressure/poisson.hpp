@@ -23,12 +23,14 @@
 //    second-order accurate, tests/test_poisson_sink.cpp).
 // sink == nullptr (or all zeros) runs exactly the arithmetic of the sink-free solvers.
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "kernels/boundary_kind.hpp"
 #include "core/field.hpp"
 #include "core/grid.hpp"
+#include "solver/io/enum_names.hpp"
 
 namespace refmap {
 
@@ -54,6 +56,13 @@ enum class MgSmoother { Rbgs, Jacobi };
 /// jump), or the Galerkin operator P^T L P with an operator-dependent prolongation
 /// ("galerkin": 9-point coarse stencils, solver/pressure/multigrid_galerkin.hpp).
 enum class MgCoarseOperator { Average, Harmonic, Galerkin };
+
+// Their names (solver/io/enum_names.hpp: to_string, parse_option); defined in
+// solver/pressure/poisson_factory.cpp, so the pressure layer names its options without the scene's.
+std::span<const OptionName<PoissonMethod>> option_names(PoissonMethod);
+std::span<const OptionName<MgCycle>> option_names(MgCycle);
+std::span<const OptionName<MgSmoother>> option_names(MgSmoother);
+std::span<const OptionName<MgCoarseOperator>> option_names(MgCoarseOperator);
 
 struct PoissonOptions {
   PoissonMethod method = PoissonMethod::Multigrid;

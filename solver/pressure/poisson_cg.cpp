@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "kernels/loop.hpp"
-#include "solver/scene/option_names.hpp"
 
 namespace refmap {
 

@@ -1,7 +1,7 @@
-// make_poisson_solver: method dispatch (solver/pressure/poisson.hpp). The method, cycle and smoother
-// are enums, named and validated once by the scene loader (solver/scene/option_names.hpp); the
-// numeric options are checked here because tests and benchmarks build PoissonOptions
-// directly.
+// make_poisson_solver: method dispatch (solver/pressure/poisson.hpp), and the names of the
+// solver's options. The method, cycle and smoother are enums, named here and validated
+// once by the scene loader; the numeric options are checked here because tests and
+// benchmarks build PoissonOptions directly.
 #include <stdexcept>
 #include <string>
 
@@ -10,6 +10,31 @@
 #include "solver/pressure/poisson_multigrid.hpp"
 
 namespace refmap {
+
+// The scene-file names (solver/io/enum_names.hpp); the order is that of the choices in error
+// messages and in scenes/README.md.
+std::span<const OptionName<PoissonMethod>> option_names(PoissonMethod) {
+  static const OptionName<PoissonMethod> n[] = {
+      {PoissonMethod::Multigrid, "multigrid"}, {PoissonMethod::Cg, "cg"}, {PoissonMethod::Mgpcg, "mgpcg"}};
+  return name_list(n);
+}
+
+std::span<const OptionName<MgCycle>> option_names(MgCycle) {
+  static const OptionName<MgCycle> n[] = {{MgCycle::V, "V"}, {MgCycle::F, "F"}};
+  return name_list(n);
+}
+
+std::span<const OptionName<MgSmoother>> option_names(MgSmoother) {
+  static const OptionName<MgSmoother> n[] = {{MgSmoother::Rbgs, "rbgs"}, {MgSmoother::Jacobi, "jacobi"}};
+  return name_list(n);
+}
+
+std::span<const OptionName<MgCoarseOperator>> option_names(MgCoarseOperator) {
+  static const OptionName<MgCoarseOperator> n[] = {{MgCoarseOperator::Average, "average"},
+                                                   {MgCoarseOperator::Harmonic, "harmonic"},
+                                                   {MgCoarseOperator::Galerkin, "galerkin"}};
+  return name_list(n);
+}
 
 std::unique_ptr<PoissonSolver> make_poisson_solver(const PoissonOptions& opt) {
   if (opt.pre_smooth < 0 || opt.post_smooth < 0 || opt.pre_smooth + opt.post_smooth < 1)

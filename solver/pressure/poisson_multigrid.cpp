@@ -2,7 +2,6 @@
 #include "solver/pressure/poisson_multigrid.hpp"
 
 #include "solver/pressure/multigrid_coarse.hpp"
-#include "solver/scene/option_names.hpp"
 
 #include <omp.h>
 

@@ -59,12 +59,6 @@ std::span<const OptionName<BodyForcing>> option_names(BodyForcing) {
   return span_of(n);
 }
 
-std::span<const OptionName<BodyForceEstimator>> option_names(BodyForceEstimator) {
-  static const OptionName<BodyForceEstimator> n[] = {{BodyForceEstimator::Forcing, "forcing"},
-                                                     {BodyForceEstimator::ControlVolume, "control_volume"}};
-  return span_of(n);
-}
-
 std::span<const OptionName<ExtrapolationMethod>> option_names(ExtrapolationMethod) {
   static const OptionName<ExtrapolationMethod> n[] = {{ExtrapolationMethod::Lsq, "lsq"},
                                                       {ExtrapolationMethod::Pde, "pde"}};
@@ -107,43 +101,6 @@ std::span<const OptionName<SolidStressTime>> option_names(SolidStressTime) {
 std::span<const OptionName<XiFlux>> option_names(XiFlux) {
   static const OptionName<XiFlux> n[] = {
       {XiFlux::Central, "central"}, {XiFlux::Superbee, "superbee"}, {XiFlux::VanLeer, "vanleer"}};
-  return span_of(n);
-}
-
-std::span<const OptionName<PoissonMethod>> option_names(PoissonMethod) {
-  static const OptionName<PoissonMethod> n[] = {
-      {PoissonMethod::Multigrid, "multigrid"}, {PoissonMethod::Cg, "cg"}, {PoissonMethod::Mgpcg, "mgpcg"}};
-  return span_of(n);
-}
-
-std::span<const OptionName<MgCycle>> option_names(MgCycle) {
-  static const OptionName<MgCycle> n[] = {{MgCycle::V, "V"}, {MgCycle::F, "F"}};
-  return span_of(n);
-}
-
-std::span<const OptionName<MgSmoother>> option_names(MgSmoother) {
-  static const OptionName<MgSmoother> n[] = {{MgSmoother::Rbgs, "rbgs"}, {MgSmoother::Jacobi, "jacobi"}};
-  return span_of(n);
-}
-
-std::span<const OptionName<MgCoarseOperator>> option_names(MgCoarseOperator) {
-  static const OptionName<MgCoarseOperator> n[] = {{MgCoarseOperator::Average, "average"},
-                                                   {MgCoarseOperator::Harmonic, "harmonic"},
-                                                   {MgCoarseOperator::Galerkin, "galerkin"}};
-  return span_of(n);
-}
-
-std::span<const OptionName<ShapeKind>> option_names(ShapeKind) {
-  static const OptionName<ShapeKind> n[] = {
-      {ShapeKind::Circle, "circle"},
-      {ShapeKind::Ellipse, "ellipse"},
-      {ShapeKind::RoundedRectangle, "rounded_rectangle"},
-      {ShapeKind::Zalesak, "zalesak"},
-      {ShapeKind::Tabulated, "tabulated"},
-      {ShapeKind::RoundedRectangle, "rectangle"},  // aliases
-      {ShapeKind::Zalesak, "zalesak_disk"},
-      {ShapeKind::Zalesak, "slotted_disk"},
-  };
   return span_of(n);
 }
 

@@ -1,11 +1,12 @@
 // Scene files: TOML -> Config. See scenes/README.md for the key reference.
 //
-// Structure: every table of the schema is read through a Table helper that knows its
-// dotted prefix and its entry in the key table (solver/scene/scene_keys.cpp), hands out typed
-// values with the table's defaults, type, range and choice checks, and rejects keys that
-// are not in the table. Adding a key = one entry in scene_keys.cpp plus one getter call
-// here; adding a table = one TableDef plus a parse_xxx. Checks that involve several keys
-// stay here, next to the getters.
+// Structure: the schema. Every table is read through the generic TomlTable
+// (solver/io/toml_reader.hpp) that knows its dotted prefix and its entry in the key table
+// (solver/scene/scene_keys.cpp), hands out typed values with the table's defaults, type, range
+// and choice checks, and rejects keys that are not in the table. Adding a key = one entry
+// in scene_keys.cpp plus one getter call here; adding a table = one TableDef plus a
+// parse_xxx. Checks that involve several keys stay here, next to the getters. The optional
+// components parse their own keys (solver/model/component_kind.hpp; parse_components below).
 #include "solver/scene/scene.hpp"
 
 #include <algorithm>
@@ -21,549 +22,26 @@
 #include <sstream>
 #include <string_view>
 
-#include <toml++/toml.h>
-
 #include "solver/model/boundary.hpp"
-#include "solver/model/expression.hpp"
+#include "solver/model/component_kind.hpp"
+#include "solver/io/expression.hpp"
 #include "solver/scene/memory_estimate.hpp"
 #include "solver/scene/option_names.hpp"
 #include "solver/model/rigid_body.hpp"
 #include "solver/scene/scene_keys.hpp"
 #include "solver/scene/suspension.hpp"
+#include "solver/model/shape.hpp"
 #include "solver/model/time_step_limits.hpp"
+#include "solver/io/toml_reader.hpp"
 
 namespace refmap {
 
-namespace {
-
-std::string format_position(const std::string& file, long line, long column) {
-  std::string s = file;
-  if (line > 0) {
-    s += ":" + std::to_string(line);
-    if (column > 0) s += ":" + std::to_string(column);
-  }
-  return s;
-}
-
-std::string one_line(std::string s) {
-  for (char& c : s)
-    if (c == '\n' || c == '\r') c = ' ';
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
-}
-
-}  // namespace
-
-SceneError::SceneError(const std::string& file_, const std::string& key_, const std::string& what, long line_,
-                       long column_)
-    : std::runtime_error(one_line(format_position(file_, line_, column_) + ": " + (key_.empty() ? "" : key_ + ": ") +
-                                  what)),
-      file(file_),
-      key(key_),
-      line(line_),
-      column(column_) {}
+// the generic reader (solver/io/toml_reader.hpp), under the short names the schema uses
+using Ctx = TomlContext;
+using Table = TomlTable;
+using namespace toml_text;
 
 namespace {
-
-// ---------------------------------------------------------------------------------------
-// small utilities
-
-std::string fmt_num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-
-std::string dq(std::string_view s) {
-  std::string r;
-  r.reserve(s.size() + 2);
-  r += '"';
-  r += s;
-  r += '"';
-  return r;
-}
-
-std::string type_name(const toml::node& n) {
-  switch (n.type()) {
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a float";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::table: return "a table";
-    case toml::node_type::date: return "a date";
-    case toml::node_type::time: return "a time";
-    case toml::node_type::date_time: return "a date-time";
-    default: return "nothing";
-  }
-}
-
-/// "a string (\"abc\")", "an integer (3)": for type errors.
-std::string describe(const toml::node& n) {
-  std::string d = type_name(n);
-  if (auto s = n.as_string()) return d + " (" + dq(s->get()) + ")";
-  if (auto i = n.as_integer()) return d + " (" + std::to_string(i->get()) + ")";
-  if (auto f = n.as_floating_point()) return d + " (" + fmt_num(f->get()) + ")";
-  if (auto b = n.as_boolean()) return d + " (" + (b->get() ? "true" : "false") + ")";
-  return d;
-}
-
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t sub = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
-    }
-    std::swap(prev, cur);
-  }
-  return prev[b.size()];
-}
-
-/// " (did you mean 'x'?)" for the closest candidate, or "" if none is close.
-std::string suggestion(std::string_view word, const std::vector<std::string>& candidates, bool quote_as_string) {
-  std::string best;
-  std::size_t best_d = std::numeric_limits<std::size_t>::max();
-  for (const auto& c : candidates) {
-    std::string lw(word), lc(c);
-    for (auto& ch : lw) ch = char(std::tolower((unsigned char)ch));
-    for (auto& ch : lc) ch = char(std::tolower((unsigned char)ch));
-    const std::size_t d = edit_distance(lw, lc);
-    if (d < best_d) { best_d = d; best = c; }
-  }
-  const std::size_t limit = word.size() <= 3 ? 1 : (word.size() <= 6 ? 2 : 3);
-  if (best.empty() || best_d > limit) return "";
-  return quote_as_string ? " (did you mean " + dq(best) + "?)" : " (did you mean '" + best + "'?)";
-}
-
-std::string join(const std::vector<std::string>& v, const std::string& sep, bool quote = false) {
-  std::string s;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    if (i) s += sep;
-    s += quote ? dq(v[i]) : v[i];
-  }
-  return s;
-}
-
-// ---------------------------------------------------------------------------------------
-// context: the file name (for messages) and which keys came from --set
-
-struct Ctx {
-  std::string file;
-  std::vector<std::string> overridden;  // normalised dotted keys ("probe[0].points")
-
-  bool from_set(const std::string& key) const {
-    for (const auto& o : overridden) {
-      if (key == o) return true;
-      if (key.size() > o.size() && key.compare(0, o.size(), o) == 0 && (key[o.size()] == '.' || key[o.size()] == '['))
-        return true;
-    }
-    return false;
-  }
-
-  /// Throws the SceneError for `key`. The position is that of `where` if given (a key's
-  /// own source), else of the node `at`, when it comes from the file; a value that came
-  /// from --set (or a table created by one) is marked "(from --set)" instead.
-  [[noreturn]] void fail(const std::string& key, const toml::node* at, const std::string& what,
-                         const toml::source_region* where = nullptr) const {
-    const toml::source_region* src = where ? where : (at ? &at->source() : nullptr);
-    const bool in_file = src && src->path && *src->path == file && src->begin.line > 0;
-    bool set = !key.empty() && from_set(key);
-    if (!set && at && !in_file && !key.empty())  // a node created by an override of a key below it
-      for (const auto& o : overridden)
-        if (o.size() > key.size() && o.compare(0, key.size(), key) == 0 && (o[key.size()] == '.' || o[key.size()] == '['))
-          set = true;
-    const long line = in_file && !set ? long(src->begin.line) : 0;
-    const long col = in_file && !set ? long(src->begin.column) : 0;
-    throw SceneError(file, key, what + (set ? " (from --set)" : ""), line, col);
-  }
-};
-
-// ---------------------------------------------------------------------------------------
-// a table of the schema
-
-class Table {
- public:
-  /// `schema`: the table's name in solver/scene/scene_keys.cpp ("solid" for "solid[2]").
-  Table(const Ctx& ctx, const toml::table& t, std::string prefix, std::string schema)
-      : ctx_(ctx), t_(t), prefix_(std::move(prefix)), schema_(std::move(schema)) {}
-
-  std::string full(std::string_view key) const {
-    return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
-  }
-  const toml::node* node(std::string_view key) const { return t_.get(key); }
-  bool has(std::string_view key) const { return t_.contains(key); }
-  const toml::table& raw() const { return t_; }
-  const std::string& prefix() const { return prefix_; }
-
-  [[noreturn]] void fail(std::string_view key, const std::string& what) const {
-    ctx_.fail(full(key), node(key), what);
-  }
-  [[noreturn]] void fail_missing(std::string_view key) const {
-    ctx_.fail(full(key), &t_, "missing required key");
-  }
-
-  /// Rejects every key that is not in the table's entry list (solver/scene/scene_keys.cpp),
-  /// reporting the first one in the file.
-  void allow() const {
-    const std::vector<std::string> names = schema_.empty() ? scene_top_level_names() : scene_key_names(schema_);
-    const toml::node* worst = nullptr;
-    const toml::key* worst_k = nullptr;
-    std::string worst_key;
-    auto pos = [](const toml::key* k) {
-      const auto& s = k->source();
-      return std::pair<long, long>(s.begin.line > 0 ? long(s.begin.line) : std::numeric_limits<long>::max(),
-                                   long(s.begin.column));
-    };
-    for (const auto& [k, v] : t_) {
-      const std::string key(k.str());
-      bool ok = false;
-      for (const auto& a : names) ok = ok || a == key;
-      if (ok) continue;
-      if (!worst || pos(&k) < pos(worst_k)) { worst = &v; worst_k = &k; worst_key = key; }
-    }
-    if (!worst) return;
-    std::string what = "unknown key";
-    std::string sug = suggestion(worst_key, names, false);
-    if (!sug.empty())
-      what += sug;
-    else
-      what += names.empty() ? " (this table takes no keys)" : " (allowed: " + join(names, ", ") + ")";
-    ctx_.fail(full(worst_key), worst, what, &worst_k->source());
-  }
-
-  // ---- typed getters: the default (none: required) and the range are those of the key's
-  // entry in solver/scene/scene_keys.cpp.
-
-  const KeyDef& entry(std::string_view key) const { return scene_key(schema_, std::string(key)); }
-
-  double number(std::string_view key) const {
-    const double v = read_number(key, default_of<double>(key));
-    checked(key, v, fmt_num(v));
-    return v;
-  }
-  /// A number whose requiredness depends on other keys ([[solid]] mu_s with flow = "solve").
-  double number(std::string_view key, bool required) const {
-    const double v = read_number(key, required ? std::nullopt : default_of<double>(key));
-    checked(key, v, fmt_num(v));
-    return v;
-  }
-  long integer(std::string_view key) const {
-    const long v = read_integer(key, default_of<long>(key));
-    checked(key, double(v), std::to_string(v));
-    return v;
-  }
-  bool boolean(std::string_view key) const { return read_boolean(key, default_of<bool>(key)); }
-  std::string string(std::string_view key) const { return read_string(key, default_of<std::string>(key)); }
-  std::array<double, 2> vec2(std::string_view key) const {
-    return read_vec2(key, default_of<std::array<double, 2>>(key));
-  }
-  /// A string that must be one of the entry's choices.
-  std::string choice(std::string_view key) const {
-    const KeyDef& k = entry(key);
-    std::string s = string(key);
-    for (const auto& c : k.choices)
-      if (s == c) return s;
-    fail(key, "unknown value " + dq(s) + suggestion(s, k.choices, true) + " (expected one of " +
-                  join(k.choices, ", ", true) + ")");
-  }
-  /// A named option (solver/scene/option_names.hpp): canonical names or aliases are accepted;
-  /// the message of an unknown name lists the canonical ones.
-  template <class E>
-  E option(std::string_view key) const {
-    const std::vector<std::string> names = canonical_names<E>();
-    const std::string s = string(key);
-    if (auto e = parse_option<E>(s)) return *e;
-    fail(key, "unknown value " + dq(s) + suggestion(s, names, true) + " (expected one of " + join(names, ", ", true) +
-                  ")");
-  }
-
-  /// The first key present although it belongs to another value of its selector
-  /// (initial.u with velocity = "zero"), in table order; nullopt if there is none.
-  std::optional<std::string> misplaced(const std::string& selector, const std::string& value) const {
-    for (const auto& k : scene_keys()) {
-      if (k.table != schema_ || k.selector != selector || !has(k.name)) continue;
-      if (std::find(k.only.begin(), k.only.end(), value) == k.only.end()) return k.name;
-    }
-    return std::nullopt;
-  }
-  /// The keys that a selector value takes, in table order.
-  std::vector<std::string> keys_of(const std::string& selector, const std::string& value) const {
-    std::vector<std::string> out;
-    for (const auto& k : scene_keys())
-      if (k.table == schema_ && k.selector == selector && std::find(k.only.begin(), k.only.end(), value) != k.only.end())
-        out.push_back(k.name);
-    return out;
-  }
-
- private:
-  template <class T>
-  std::optional<T> default_of(std::string_view key) const {
-    const KeyDef& k = entry(key);
-    if (const T* v = std::get_if<T>(&k.def)) return *v;
-    return std::nullopt;
-  }
-  /// The entry's range check: "must be > 0 (note), got -1".
-  void checked(std::string_view key, double v, const std::string& shown) const {
-    const KeyRange& r = entry(key).range;
-    if ((r.lo || r.hi) && !r.contains(v))
-      fail(key, "must be " + r.phrase() + (r.note.empty() ? "" : " (" + r.note + ")") + ", got " + shown);
-  }
-
-  // ---- raw getters: `def` = nullopt means required.
-
-  double read_number(std::string_view key, std::optional<double> def) const {
-    const toml::node* n = node(key);
-    if (!n) {
-      if (!def) fail_missing(key);
-      return *def;
-    }
-    double v;
-    if (auto f = n->as_floating_point()) v = f->get();
-    else if (auto i = n->as_integer()) v = double(i->get());
-    else fail(key, "expected a number, got " + describe(*n));
-    if (!std::isfinite(v)) fail(key, "must be a finite number, got " + fmt_num(v));
-    return v;
-  }
-
-  long read_integer(std::string_view key, std::optional<long> def) const {
-    const toml::node* n = node(key);
-    if (!n) {
-      if (!def) fail_missing(key);
-      return *def;
-    }
-    if (auto i = n->as_integer()) return long(i->get());
-    if (auto f = n->as_floating_point()) {
-      if (std::isfinite(f->get()) && f->get() == std::floor(f->get()))
-        fail(key, "expected an integer, got a float (write " + fmt_num(f->get()) + " without the decimal point)");
-    }
-    fail(key, "expected an integer, got " + describe(*n));
-  }
-
-  bool read_boolean(std::string_view key, std::optional<bool> def) const {
-    const toml::node* n = node(key);
-    if (!n) {
-      if (!def) fail_missing(key);
-      return *def;
-    }
-    if (auto b = n->as_boolean()) return b->get();
-    fail(key, "expected true or false, got " + describe(*n));
-  }
-
-  std::string read_string(std::string_view key, std::optional<std::string> def) const {
-    const toml::node* n = node(key);
-    if (!n) {
-      if (!def) fail_missing(key);
-      return *def;
-    }
-    if (auto s = n->as_string()) return s->get();
-    fail(key, "expected a string, got " + describe(*n));
-  }
-
-  /// A list of points [[x, y], ...] (KeyType::Points; absent: empty).
- public:
-  std::vector<std::array<double, 2>> points(std::string_view key) const {
-    std::vector<std::array<double, 2>> out;
-    const toml::node* n = node(key);
-    if (!n) return out;
-    const toml::array* a = n->as_array();
-    const std::string want = "expected a list of points [[x, y], ...], ";
-    if (!a) fail(key, want + "got " + describe(*n));
-    for (std::size_t k = 0; k < a->size(); ++k) {
-      const toml::array* p = a->get(k)->as_array();
-      if (!p || p->size() != 2) fail(key, want + "element " + std::to_string(k) + " is " + describe(*a->get(k)));
-      std::array<double, 2> xy{};
-      for (std::size_t i = 0; i < 2; ++i) {
-        const toml::node& e = *p->get(i);
-        if (auto f = e.as_floating_point()) xy[i] = f->get();
-        else if (auto in = e.as_integer()) xy[i] = double(in->get());
-        else fail(key, want + "element " + std::to_string(k) + " has " + describe(e));
-        if (!std::isfinite(xy[i])) fail(key, "coordinates must be finite numbers");
-      }
-      out.push_back(xy);
-    }
-    return out;
-  }
-
- private:
-  std::array<double, 2> read_vec2(std::string_view key, std::optional<std::array<double, 2>> def) const {
-    const toml::node* n = node(key);
-    if (!n) {
-      if (!def) fail_missing(key);
-      return *def;
-    }
-    const toml::array* a = n->as_array();
-    if (!a) fail(key, "expected an array of two numbers [a, b], got " + describe(*n));
-    if (a->size() != 2) fail(key, "expected an array of two numbers [a, b], got " + std::to_string(a->size()) + " elements");
-    std::array<double, 2> out{};
-    for (std::size_t i = 0; i < 2; ++i) {
-      const toml::node& e = *a->get(i);
-      if (auto f = e.as_floating_point()) out[i] = f->get();
-      else if (auto in = e.as_integer()) out[i] = double(in->get());
-      else fail(key, "expected an array of two numbers [a, b], element " + std::to_string(i) + " is " + describe(e));
-      if (!std::isfinite(out[i])) fail(key, "elements must be finite numbers");
-    }
-    return out;
-  }
-
- public:
-  /// A sub-table; nullptr if absent and not required.
-  const toml::table* table(std::string_view key, bool required) const {
-    const toml::node* n = node(key);
-    if (!n) {
-      if (required) ctx_.fail(full(key), nullptr, "missing required table [" + full(key) + "]");
-      return nullptr;
-    }
-    if (auto t = n->as_table()) return t;
-    fail(key, "expected a table [" + full(key) + "], got " + describe(*n));
-  }
-
-  // ---- range checks on a value already read
-  void require(bool ok, std::string_view key, const std::string& what) const {
-    if (!ok) fail(key, what);
-  }
-
- private:
-  const Ctx& ctx_;
-  const toml::table& t_;
-  std::string prefix_;
-  std::string schema_;
-};
-
-// ---------------------------------------------------------------------------------------
-// --set overrides
-
-std::string trim(std::string s) {
-  const char* ws = " \t\r\n";
-  s.erase(0, s.find_first_not_of(ws));
-  const auto e = s.find_last_not_of(ws);
-  s.erase(e == std::string::npos ? 0 : e + 1);
-  return s;
-}
-
-struct PathComp {
-  std::string name;      // table key, or empty for an index
-  std::size_t index = 0;
-  bool is_index = false;
-};
-
-bool all_digits(const std::string& s) {
-  if (s.empty()) return false;
-  for (char c : s)
-    if (c < '0' || c > '9') return false;
-  return true;
-}
-
-/// "probe[0].points" / "probe.0.points" -> components; also returns the normalised key.
-std::vector<PathComp> parse_key_path(const Ctx& ctx, const std::string& key, const std::string& arg, std::string& norm) {
-  std::vector<PathComp> out;
-  norm.clear();
-  auto bad = [&](const std::string& why) -> void {
-    throw SceneError(ctx.file, "--set " + arg, why);
-  };
-  std::size_t i = 0;
-  while (i <= key.size()) {
-    std::size_t dot = key.find('.', i);
-    if (dot == std::string::npos) dot = key.size();
-    std::string part = key.substr(i, dot - i);
-    if (part.empty()) bad("malformed key " + dq(key) + " (empty component)");
-    // name[3][4] or a pure number
-    std::size_t br = part.find('[');
-    std::string name = part.substr(0, br);
-    if (all_digits(name)) {
-      if (out.empty()) bad("malformed key " + dq(key) + " (starts with an index)");
-      out.push_back({"", std::stoul(name), true});
-      norm += "[" + name + "]";
-    } else {
-      if (name.empty()) bad("malformed key " + dq(key));
-      if (name.front() == '"' || name.front() == '\'') {
-        if (name.size() < 2 || name.back() != name.front()) bad("malformed key " + dq(key));
-        name = name.substr(1, name.size() - 2);
-      }
-      out.push_back({name, 0, false});
-      norm += (norm.empty() ? "" : ".") + name;
-    }
-    while (br != std::string::npos) {
-      const std::size_t close = part.find(']', br);
-      if (close == std::string::npos) bad("malformed key " + dq(key) + " (missing ']')");
-      const std::string idx = part.substr(br + 1, close - br - 1);
-      if (!all_digits(idx)) bad("malformed key " + dq(key) + " (array index must be a number)");
-      out.push_back({"", std::stoul(idx), true});
-      norm += "[" + idx + "]";
-      br = close + 1 < part.size() ? (part[close + 1] == '[' ? close + 1 : std::string::npos) : std::string::npos;
-      if (br == std::string::npos && close + 1 < part.size()) bad("malformed key " + dq(key));
-    }
-    i = dot + 1;
-  }
-  return out;
-}
-
-/// The value of one override: a TOML value if it parses as one, else the bare string.
-toml::table parse_override_value(const std::string& value) {
-  try {
-    toml::table t = toml::parse("v = " + value);
-    if (t.size() == 1 && t.contains("v")) return t;
-  } catch (const toml::parse_error&) {
-  }
-  toml::table t;
-  t.insert("v", value);
-  return t;
-}
-
-void apply_override(Ctx& ctx, toml::table& root, const std::string& arg) {
-  const auto eq = arg.find('=');
-  if (eq == std::string::npos) throw SceneError(ctx.file, "--set " + arg, "expected key=value");
-  const std::string key = trim(arg.substr(0, eq));
-  const std::string value = trim(arg.substr(eq + 1));
-  if (key.empty()) throw SceneError(ctx.file, "--set " + arg, "empty key");
-  std::string norm;
-  const std::vector<PathComp> path = parse_key_path(ctx, key, arg, norm);
-  toml::table vt = parse_override_value(value);
-  toml::node& val = *vt.get("v");
-
-  toml::node* cur = &root;
-  std::string so_far;
-  for (std::size_t k = 0; k < path.size(); ++k) {
-    const PathComp& c = path[k];
-    const bool last = k + 1 == path.size();
-    const bool next_is_index = !last && path[k + 1].is_index;
-    if (c.is_index) {
-      toml::array* arr = cur->as_array();
-      if (!arr) throw SceneError(ctx.file, norm, "cannot set: " + so_far + " is not an array (from --set)");
-      if (c.index > arr->size())
-        throw SceneError(ctx.file, norm,
-                         "cannot set: index " + std::to_string(c.index) + " is out of range, " + so_far + " has " +
-                             std::to_string(arr->size()) + " elements (from --set)");
-      so_far += "[" + std::to_string(c.index) + "]";
-      if (last) {
-        if (c.index == arr->size()) arr->push_back(std::move(val));
-        else arr->replace(arr->cbegin() + std::ptrdiff_t(c.index), std::move(val));
-      } else {
-        if (c.index == arr->size()) {
-          if (next_is_index) arr->push_back(toml::array{});
-          else arr->push_back(toml::table{});
-        }
-        cur = arr->get(c.index);
-      }
-    } else {
-      toml::table* tbl = cur->as_table();
-      if (!tbl) throw SceneError(ctx.file, norm, "cannot set: " + so_far + " is not a table (from --set)");
-      so_far += (so_far.empty() ? "" : ".") + c.name;
-      if (last) {
-        tbl->insert_or_assign(c.name, std::move(val));
-      } else {
-        if (!tbl->contains(c.name)) {
-          if (next_is_index) tbl->insert(c.name, toml::array{});
-          else tbl->insert(c.name, toml::table{});
-        }
-        cur = tbl->get(c.name);
-      }
-    }
-  }
-  ctx.overridden.push_back(norm);
-}
 
 // ---------------------------------------------------------------------------------------
 // the schema
@@ -600,29 +78,6 @@ void parse_fluid(const Ctx& ctx, const Table& top, Config& cfg) {
   f.allow();
   cfg.rho_f = f.number("density");
   cfg.mu_f = f.number("viscosity");
-}
-
-/// The text of an expression key; a plain number is accepted as an expression too
-/// (u_expr = 0). The expression is parsed here so a bad one fails at load time.
-std::string expression_text(const Table& t, const char* key) {
-  const toml::node* n = t.node(key);
-  std::string text;
-  if (n && n->as_integer()) {
-    text = std::to_string(n->as_integer()->get());
-  } else if (n && n->as_floating_point()) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", n->as_floating_point()->get());
-    text = buf;
-  } else {
-    text = t.string(key);
-  }
-  try {
-    Expression e(text);
-    (void)e;
-  } catch (const std::invalid_argument& ex) {
-    t.fail(key, "invalid expression " + dq(text) + ": " + ex.what());
-  }
-  return text;
 }
 
 SideBc parse_side(const Ctx& ctx, const Table& b, const char* side) {
@@ -827,12 +282,7 @@ void parse_output(const Ctx& ctx, const Table& top, Config& cfg) {
   o.require(de <= std::numeric_limits<int>::max(), "diagnostics_every",
             "must be <= " + std::to_string(std::numeric_limits<int>::max()) + ", got " + std::to_string(de));
   cfg.diagnostics_every = int(de);
-  cfg.body_force = o.option<BodyForceEstimator>("body_force");
   cfg.log_interval_s = o.number("log_interval");
-  cfg.wall_stress = o.boolean("wall_stress");
-  auto wall = [](const SideBc& b) { return b.type == BcType::NoSlip || b.type == BcType::MovingWall; };
-  o.require(!cfg.wall_stress || (wall(cfg.bc[Bottom]) && wall(cfg.bc[Top])), "wall_stress",
-            "needs no-slip or moving walls at the bottom and the top");
 }
 
 void parse_probes(const Ctx& ctx, const Table& top, Config& cfg) {
@@ -870,46 +320,6 @@ void parse_probes(const Ctx& ctx, const Table& top, Config& cfg) {
     }
     spec.points = int(p.integer("points"));
     cfg.probes.push_back(spec);
-  }
-}
-
-void parse_tracers(const Ctx& ctx, const Table& top, Config& cfg) {
-  const toml::node* n = top.node("tracers");
-  if (!n) return;
-  const toml::array* arr = n->as_array();
-  if (!arr) top.fail("tracers", "expected an array of tables ([[tracers]] sections), got " + describe(*n));
-  const Grid& g = cfg.grid;
-  const double tol = 1e-12 * std::max(g.lx(), g.ly());
-  for (std::size_t i = 0; i < arr->size(); ++i) {
-    const std::string prefix = "tracers[" + std::to_string(i) + "]";
-    const toml::table* t = arr->get(i)->as_table();
-    if (!t) ctx.fail(prefix, arr->get(i), "expected a table ([[tracers]] section), got " + describe(*arr->get(i)));
-    Table p(ctx, *t, prefix, "tracers");
-    p.allow();
-    TracerSeed sd;
-    sd.box = p.has("box");
-    const char* key = sd.box ? "box" : "line";
-    if (sd.box && p.has("line")) p.fail("line", "give either `line` (with `n`) or `box` (with `nx`, `ny`), not both");
-    if (!sd.box && !p.has("line")) ctx.fail(prefix, t, "needs `line` (with `n`) or `box` (with `nx`, `ny`)");
-    if (const char* other = sd.box ? "n" : (p.has("nx") ? "nx" : p.has("ny") ? "ny" : nullptr); other && p.has(other))
-      p.fail(other, std::string("not used with `") + key + "`");
-    const auto pts = p.points(key);
-    p.require(pts.size() == 2, key, "expected two points [[x0, y0], [x1, y1]], got " + std::to_string(pts.size()));
-    for (const auto& xy : pts)
-      p.require(xy[0] >= g.x0 - tol && xy[0] <= g.x0 + g.lx() + tol && xy[1] >= g.y0 - tol && xy[1] <= g.y0 + g.ly() + tol,
-                key, "point [" + fmt_num(xy[0]) + ", " + fmt_num(xy[1]) + "] is outside the domain [" + fmt_num(g.x0) +
-                         ", " + fmt_num(g.x0 + g.lx()) + "] x [" + fmt_num(g.y0) + ", " + fmt_num(g.y0 + g.ly()) + "]");
-    sd.x0 = std::clamp(pts[0][0], g.x0, g.x0 + g.lx());
-    sd.y0 = std::clamp(pts[0][1], g.y0, g.y0 + g.ly());
-    sd.x1 = std::clamp(pts[1][0], g.x0, g.x0 + g.lx());
-    sd.y1 = std::clamp(pts[1][1], g.y0, g.y0 + g.ly());
-    if (sd.box) {
-      sd.nx = int(p.integer("nx"));
-      sd.ny = int(p.integer("ny"));
-    } else {
-      sd.n = int(p.integer("n"));
-    }
-    cfg.tracers.push_back(sd);
   }
 }
 
@@ -1157,41 +567,6 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
     }
     if (s.has("clamp")) sp.clamp = s.string("clamp");
 
-    // ---- actuation (kernels/constitutive_actuation.hpp)
-    if (const toml::node* an = s.node("actuation")) {
-      const toml::table* at = an->as_table();
-      if (!at) s.fail("actuation", "expected an inline table { stretch_x = \"...\", shear = \"...\" }, got " + describe(*an));
-      Table a(ctx, *at, prefix + ".actuation", "solid.actuation");
-      a.allow();
-      for (const char* k : {"stretch_x", "shear"}) {
-        if (!a.has(k)) continue;
-        const std::string text = expression_text(a, k);
-        try {
-          const Expression e(text);
-          const double v = e.eval(0.0, 0.0, cfg.t_start);
-          const bool stretch = std::string(k) == "stretch_x";
-          if (stretch ? !(v > 0.0 && std::isfinite(v)) : !std::isfinite(v))
-            a.fail(k, std::string("must be ") + (stretch ? "a finite number > 0" : "finite") + ", got " + fmt_num(v) +
-                          " at t = " + fmt_num(cfg.t_start));
-        } catch (const std::invalid_argument& ex) {
-          a.fail(k, "invalid expression " + dq(text) + ": " + ex.what());
-        }
-        (std::string(k) == "stretch_x" ? sp.actuation.stretch_x : sp.actuation.shear) = text;
-      }
-      if (!sp.actuation.enabled()) s.fail("actuation", "give stretch_x and/or shear");
-    }
-
-    // ---- material points (solver/components/markers.hpp)
-    sp.markers = s.points("markers");
-    for (const auto& m : sp.markers)
-      s.require(shape->phi0(m[0], m[1]) <= 1e-6 * g.dx, "markers",
-                "point [" + fmt_num(m[0]) + ", " + fmt_num(m[1]) + "] is not in the solid's reference configuration");
-    sp.boundary_markers = int(s.integer("boundary_markers"));
-    if (sp.boundary_markers > 0) {
-      const BoundingBox mb = shape->bbox();
-      s.require(shape->phi0(0.5 * (mb.xmin + mb.xmax), 0.5 * (mb.ymin + mb.ymax)) < 0.0, "boundary_markers",
-                "the centre of the shape's bounding box lies outside the shape: give the points with `markers`");
-    }
     cfg.solids.push_back(std::move(sp));
   }
   // clamped soft solids: the body they are clamped to must be a rigid solid of the scene
@@ -1282,6 +657,7 @@ void parse_suspension(const Ctx& ctx, toml::table& root, const Table& top, const
     arr->push_back(std::move(t));
   }
 }
+
 
 // ---------------------------------------------------------------------------------------
 // the state at the start: everything the run would otherwise find only after the output
@@ -1478,6 +854,13 @@ void check_memory(const Ctx& ctx, const Table& top, const Config& cfg) {
                       " available (grid " + std::to_string(cfg.grid.nx) + " x " + std::to_string(cfg.grid.ny) + ")");
 }
 
+/// The optional components' own keys (solver/model/component_kind.hpp), each parsed by its kind
+/// in registration order; a kind the scene does not use adds nothing.
+void parse_components(const Table& top, Config& cfg) {
+  for (const ComponentKind& k : component_kinds())
+    if (auto o = k.parse(top, cfg)) cfg.components.push_back({k.name, std::move(o)});
+}
+
 Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>& sets) {
   for (const auto& s : sets) apply_override(ctx, root, s);
 
@@ -1504,12 +887,12 @@ Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>&
   parse_solver(ctx, top, cfg);
   parse_output(ctx, top, cfg);
   parse_probes(ctx, top, cfg);
-  parse_tracers(ctx, top, cfg);
   parse_solids_options(ctx, top, cfg);  // after parse_solver: the solids need cfg.flow
   check_implicit_reach(ctx, top, cfg);  // after parse_solids_options: checked against the band
   parse_suspension(ctx, root, top, cfg);  // before parse_solids: its particles are [[solid]] tables
   parse_solids(ctx, top, cfg);
   parse_contact(ctx, top, cfg);  // after parse_solids_options: the range is checked against the band
+  parse_components(top, cfg);     // after the core: a component's checks may use any of it
   check_start_state(ctx, top, cfg);
   check_fixed_step(ctx, top, cfg);  // after parse_solids: the solids' limits
   check_memory(ctx, top, cfg);
@@ -1521,6 +904,7 @@ Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>&
 Config load_scene_string(const std::string& text, const std::string& path, const std::vector<std::string>& sets) {
   Ctx ctx;
   ctx.file = path;
+  ctx.catalog = &scene_catalog();
   toml::table root;
   try {
     root = toml::parse(text, path);

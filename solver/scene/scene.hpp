@@ -8,21 +8,13 @@
 //
 // (":<line>:<column>" is present when the offending value came from the file and toml++
 // knows where it is; values from --set overrides are marked "(from --set)").
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "solver/model/config.hpp"
+#include "solver/io/input_error.hpp"
 
 namespace refmap {
-
-struct SceneError : std::runtime_error {
-  SceneError(const std::string& file, const std::string& key, const std::string& what,
-             long line = 0, long column = 0);
-  std::string file;  ///< scene path as given
-  std::string key;   ///< dotted key ("fluid.viscosity", "probe[1].start"), "" for file-level errors
-  long line = 0, column = 0;  ///< 1-based position in the file, 0 if unknown
-};
 
 /// Parse, override and validate a scene file. `sets` are "dotted.key=value" overrides
 /// (the --set arguments of `refmap run`): the value is parsed as a TOML value, or taken as

@@ -1,12 +1,15 @@
 // The scene-file schema (see solver/scene/scene_keys.hpp). One entry per key; the order here is
-// the order of the reference in scenes/README.md.
+// the order of the reference in scenes/README.md. The optional components' keys are in
+// their own files (solver/model/component_kind.hpp); a comment marks where each goes.
 #include "solver/scene/scene_keys.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
+#include "solver/model/component_kind.hpp"
 #include "solver/model/config.hpp"
 #include "solver/scene/option_names.hpp"
 #include "solver/scene/suspension.hpp"
@@ -15,87 +18,15 @@ namespace refmap {
 
 namespace {
 
-/// Shortest "%g"-style text that reads back as v (for the reference; messages use their
-/// own format in scene.cpp).
-std::string num_text(double v) {
-  char buf[64];
-  if (v == std::floor(v) && std::fabs(v) < 1e15) {  // integers in full: 100, 1000000000
-    std::snprintf(buf, sizeof buf, "%.0f", v);
-    return buf;
-  }
-  for (int prec = 1; prec <= 17; ++prec) {
-    std::snprintf(buf, sizeof buf, "%.*g", prec, v);
-    if (std::strtod(buf, nullptr) == v) break;
-  }
-  std::string s = buf;
-  // 1e-08 -> 1e-8
-  const auto e = s.find('e');
-  if (e != std::string::npos) {
-    std::size_t d = e + 1;
-    if (d < s.size() && (s[d] == '-' || s[d] == '+')) ++d;
-    while (d + 1 < s.size() && s[d] == '0') s.erase(d, 1);
-    if (s[e + 1] == '+') s.erase(e + 1, 1);
-  }
-  return s;
-}
-
 /// A float as a scene file would write it: 1 -> "1.0", 0.5 -> "0.5", 1e-8 -> "1e-8".
 std::string float_text(double v) {
-  std::string s = num_text(v);
+  std::string s = key_number_text(v);
   if (s.find_first_of(".e") == std::string::npos) s += ".0";
   return s;
 }
 
-// ---- range builders
-KeyRange gt(double lo, std::string note = "") { return {lo, std::nullopt, true, false, std::move(note), ""}; }
-KeyRange ge(double lo, std::string note = "") { return {lo, std::nullopt, false, false, std::move(note), ""}; }
-KeyRange in(double lo, bool lo_open, double hi, bool hi_open, std::string note = "") {
-  return {lo, hi, lo_open, hi_open, std::move(note), ""};
-}
-/// A range enforced by a cross-key check in scene.cpp; documented only.
-KeyRange text_range(std::string text) { return {std::nullopt, std::nullopt, false, false, "", std::move(text)}; }
-
-// ---- entry builders
-KeyDef key(const char* table, const char* name, KeyType type, KeyValue def, KeyRange range, const char* desc) {
-  KeyDef k;
-  k.table = table;
-  k.name = name;
-  k.type = type;
-  k.def = std::move(def);
-  k.range = std::move(range);
-  k.description = desc;
-  return k;
-}
-KeyDef num(const char* table, const char* name, std::optional<double> def, KeyRange range, const char* desc) {
-  return key(table, name, KeyType::Float, def ? KeyValue(*def) : KeyValue(), std::move(range), desc);
-}
-KeyDef integer(const char* table, const char* name, std::optional<long> def, KeyRange range, const char* desc) {
-  return key(table, name, KeyType::Integer, def ? KeyValue(*def) : KeyValue(), std::move(range), desc);
-}
-KeyDef boolean(const char* table, const char* name, bool def, const char* desc) {
-  return key(table, name, KeyType::Bool, def, {}, desc);
-}
-KeyDef vec2(const char* table, const char* name, std::optional<std::array<double, 2>> def, const char* desc) {
-  return key(table, name, KeyType::Vec2, def ? KeyValue(*def) : KeyValue(), {}, desc);
-}
-KeyDef str(const char* table, const char* name, std::optional<std::string> def, const char* desc) {
-  return key(table, name, KeyType::String, def ? KeyValue(*def) : KeyValue(), {}, desc);
-}
-template <class E>
-KeyDef choice(const char* table, const char* name, std::optional<E> def, const char* desc) {
-  KeyDef k = key(table, name, KeyType::Choice, def ? KeyValue(std::string(to_string(*def))) : KeyValue(), {}, desc);
-  k.choices = canonical_names<E>();
-  return k;
-}
-KeyDef only(KeyDef k, const char* selector, std::vector<std::string> values) {
-  k.selector = selector;
-  k.only = std::move(values);
-  return k;
-}
-KeyDef shown_default(KeyDef k, const char* text) {
-  k.default_text = text;
-  return k;
-}
+// the entry builders (solver/io/key_def.hpp)
+using namespace keys;
 
 std::vector<KeyDef> build_keys() {
   const Config d;  // the defaults (solver/model/config.hpp)
@@ -255,14 +186,8 @@ std::vector<KeyDef> build_keys() {
       num("output", "checkpoint_minutes", d.checkpoint_minutes, ge(0, "0 = not by wall time"),
           "also write a checkpoint every this many wall minutes (`--checkpoint-minutes` overrides)"),
       integer("output", "diagnostics_every", d.diagnostics_every, ge(1), "steps between rows of `diagnostics.csv`"),
-      boolean("output", "wall_stress", d.wall_stress,
-              "shear stress on the bottom and top walls and the relative viscosity of a shear cell in "
-              "`diagnostics.csv` (both must be walls)"),
-      choice<BodyForceEstimator>("output", "body_force", d.body_force,
-                                 "the force in `solid<k>_fx`, `_fy`, `_torque`: `\"forcing\"`, a rigid body's direct "
-                                 "forcing; `\"control_volume\"`, every unclamped solid's (a rigid body with its "
-                                 "clamped solids), from the fluid's momentum balance on a box around it "
-                                 "(docs/bodies.md)"),
+      // output.wall_stress: solver/components/wall_stress.cpp (wall_stress_kind)
+      // output.body_force: solver/components/control_volume_forces.cpp (control_volume_forces_kind)
       num("output", "log_interval", d.log_interval_s, gt(0, "seconds"),
           "wall seconds between progress log lines when stderr is not a terminal"),
 
@@ -276,16 +201,7 @@ std::vector<KeyDef> build_keys() {
       vec2("probe", "end", std::nullopt, "last point (x, y), inside the domain (walls included)"),
       integer("probe", "points", std::nullopt, in(2, false, 10000000, false), "number of samples"),
 
-      shown_default(key("tracers", "line", KT::Points, {}, text_range("two points inside the domain"),
-                        "seed `n` tracers on the segment [[x0, y0], [x1, y1]], ends included (give `line` or `box`)"),
-                    "—"),
-      shown_default(integer("tracers", "n", {}, in(1, false, 10000000, false), "number of tracers on `line`"), "—"),
-      shown_default(key("tracers", "box", KT::Points, {}, text_range("two corners inside the domain"),
-                        "seed `nx` x `ny` tracers on the lattice of the box with corners [[x0, y0], [x1, y1]], corners "
-                        "included"),
-                    "—"),
-      shown_default(integer("tracers", "nx", {}, in(1, false, 100000, false), "tracers along x in `box`"), "—"),
-      shown_default(integer("tracers", "ny", {}, in(1, false, 100000, false), "tracers along y in `box`"), "—"),
+      // [[tracers]]: solver/components/tracers.cpp (tracers_kind)
 
       choice<ExtrapolationMethod>("solids", "extrapolation", dso.extrapolation,
                                   "extrapolation of the reference map into the band: least squares (the paper's "
@@ -409,25 +325,9 @@ std::vector<KeyDef> build_keys() {
                              "reference map moves with it, and contact between the two is off"),
                          "not clamped"),
            "motion", {"free"}),
-      shown_default(key("solid", "markers", KT::Points, {}, text_range("points of the reference configuration"),
-                        "material points (X, Y) of the reference configuration, followed through xi and written to "
-                        "`markers.csv` (docs/tracers.md)"),
-                    "none"),
-      integer("solid", "boundary_markers", ds.boundary_markers, ge(0),
-              "also this many material points on the reference boundary, at equal angles about the centre of "
-              "the shape's bounding box (which must lie inside the shape)"),
+      // solid.markers, solid.boundary_markers: solver/components/markers.cpp (markers_kind)
 
-      shown_default(key("solid", "actuation", KT::InlineTable, {}, {},
-                        "inline table `{ stretch_x = \"...\", shear = \"...\" }`: a stress-free configuration that "
-                        "changes in time (see `solid.actuation` below, docs/actuation.md)"),
-                    "none"),
-      shown_default(key("solid.actuation", "stretch_x", KT::Expression, {}, text_range("> 0 at every t"),
-                        "s(t): the stress-free shape is the reference one stretched by s along x and by 1/s along y "
-                        "(area kept)"),
-                    "`1`"),
-      shown_default(key("solid.actuation", "shear", KT::Expression, {}, {},
-                        "g(t): then sheared, x += g y (A = diag(s, 1/s) [[1, g], [0, 1]])"),
-                    "`0`"),
+      // solid.actuation and its table: solver/components/actuation.cpp (actuation_kind)
 
       integer("suspension", "count", dsu.count, ge(0, "0: from `area_fraction`"),
               "number of particles; give this or `area_fraction`"),
@@ -450,6 +350,7 @@ std::vector<KeyDef> build_keys() {
       num("suspension", "mu_s", std::nullopt, ge(0), "each particle's `mu_s` (shear modulus G = 2 mu_s)"),
       num("suspension", "density", std::nullopt, gt(0), "each particle's `density`"),
       num("suspension", "viscosity", dsu.viscosity, ge(0), "each particle's (Kelvin-Voigt) `viscosity`"),
+
 
       boolean("contact", "enabled", dc.enabled, "contact force on (the gaps and events are reported either way)"),
       boolean("contact", "walls", dc.walls,
@@ -475,23 +376,11 @@ std::string join(const std::vector<std::string>& v, const std::string& sep, cons
 
 }  // namespace
 
-bool KeyRange::contains(double v) const {
-  if (lo && (lo_open ? !(v > *lo) : !(v >= *lo))) return false;
-  if (hi && (hi_open ? !(v < *hi) : !(v <= *hi))) return false;
-  return true;
-}
+namespace {
 
-std::string KeyRange::phrase() const {
-  if (!text.empty()) return text;
-  if (lo && hi)
-    return std::string("in ") + (lo_open ? "(" : "[") + num_text(*lo) + ", " + num_text(*hi) + (hi_open ? ")" : "]");
-  if (lo) return std::string(lo_open ? "> " : ">= ") + num_text(*lo);
-  if (hi) return std::string(hi_open ? "< " : "<= ") + num_text(*hi);
-  return "";
-}
-
-const std::vector<TableDef>& scene_tables() {
-  static const std::vector<TableDef> t = {
+/// The core's tables (the components' are merged in by scene_catalog).
+std::vector<TableDef> core_tables() {
+  return {
       {"", "Top level", false, false, false, ""},
       {"domain", "`[domain]`", true, false, false, ""},
       {"grid", "`[grid]`", true, false, false, ""},
@@ -509,16 +398,12 @@ const std::vector<TableDef>& scene_tables() {
       {"solver", "`[solver]`", false, false, false, ""},
       {"output", "`[output]`", false, false, false, ""},
       {"probe", "`[[probe]]`", false, true, false, ""},
-      {"tracers", "`[[tracers]]`", false, true, false,
-       "Passive fluid tracers, written to `tracers.csv` at every VTK frame (docs/tracers.md). Each table seeds a "
-       "`line` (with `n`) or a `box` (with `nx`, `ny`)."},
+      // [[tracers]]: solver/components/tracers.cpp
       {"solids", "`[solids]`", false, false, false, "Options shared by all solids; widths are in cells."},
       {"solid", "`[[solid]]`", false, true, false,
        "A shape key that does not belong to the chosen `shape` is an error, as are `u`, `v`, `omega` with "
        "`velocity = \"fluid\"`."},
-      {"solid.actuation", "`solid.actuation` as an inline table", false, false, true,
-       "Expressions of `t` (see *Expressions*); the stress is that of the elastic part F A(t)^-1 of the deformation, so "
-       "the solid relaxes towards its reference shape mapped by A(t) (docs/actuation.md)."},
+      // solid.actuation: solver/components/actuation.cpp
       {"suspension", "`[suspension]`", false, false, false,
        "Particles at random positions without overlap (random sequential addition, solver/scene/suspension.hpp), "
        "expanded at load into soft `[[solid]]` tables named `<name><i>` (circles, or ellipses with `aspect` > 1) "
@@ -527,33 +412,54 @@ const std::vector<TableDef>& scene_tables() {
       {"contact", "`[contact]`", false, false, false,
        "On by default whenever there are solids and `solver.flow = \"solve\"`."},
   };
-  return t;
 }
 
-const std::vector<KeyDef>& scene_keys() {
-  static const std::vector<KeyDef> k = build_keys();
-  return k;
+/// The core's tables and keys with every component kind's merged in, where each says
+/// (solver/model/component_kind.hpp).
+KeyCatalog with_components(std::vector<TableDef> tables, std::vector<KeyDef> all) {
+  for (const ComponentKind& kind : component_kinds()) {
+    for (const auto& t : kind.tables) {
+      auto it = std::find_if(tables.begin(), tables.end(), [&](const TableDef& d) { return d.name == t.after; });
+      tables.insert(it == tables.end() ? it : it + 1, t.def);
+    }
+    std::size_t pos = all.size();  // after the kind's anchor key, in a table of the core
+    for (std::size_t i = 0; i < all.size(); ++i)
+      if (!kind.after.empty() && all[i].dotted() == kind.after) pos = i + 1;
+    for (const KeyDef& k : kind.keys) {
+      if (pos < all.size() && pos > 0 && all[pos - 1].table == k.table)
+        all.insert(all.begin() + std::ptrdiff_t(pos++), k);
+      else
+        all.push_back(k);
+    }
+  }
+  // grouped by table in the tables' order (`refmap keys` lists them in this order; the
+  // core's entries already are), each table's keys in the order above
+  auto table_index = [&](const KeyDef& k) {
+    for (std::size_t i = 0; i < tables.size(); ++i)
+      if (tables[i].name == k.table) return i;
+    return tables.size();
+  };
+  std::stable_sort(all.begin(), all.end(),
+                   [&](const KeyDef& a, const KeyDef& b) { return table_index(a) < table_index(b); });
+  return {std::move(tables), std::move(all)};
 }
 
-const KeyDef& scene_key(const std::string& table, const std::string& name) {
-  for (const auto& k : scene_keys())
-    if (k.table == table && k.name == name) return k;
-  throw std::logic_error("scene key " + (table.empty() ? name : table + "." + name) + " is not in solver/scene/scene_keys.cpp");
+}  // namespace
+
+const KeyCatalog& scene_catalog() {
+  static const KeyCatalog c = with_components(core_tables(), build_keys());
+  return c;
 }
 
-std::vector<std::string> scene_key_names(const std::string& table) {
-  std::vector<std::string> out;
-  for (const auto& k : scene_keys())
-    if (k.table == table) out.push_back(k.name);
-  return out;
-}
+const std::vector<TableDef>& scene_tables() { return scene_catalog().tables; }
 
-std::vector<std::string> scene_top_level_names() {
-  std::vector<std::string> out = scene_key_names("");
-  for (const auto& t : scene_tables())
-    if (!t.name.empty() && !t.nested) out.push_back(t.name);
-  return out;
-}
+const std::vector<KeyDef>& scene_keys() { return scene_catalog().keys; }
+
+const KeyDef& scene_key(const std::string& table, const std::string& name) { return scene_catalog().key(table, name); }
+
+std::vector<std::string> scene_key_names(const std::string& table) { return scene_catalog().key_names(table); }
+
+std::vector<std::string> scene_top_level_names() { return scene_catalog().top_level_names(); }
 
 std::string key_type_text(const KeyDef& k) {
   std::string t;

@@ -1,4 +1,4 @@
-#include "solver/model/expression.hpp"
+#include "solver/io/expression.hpp"
 
 #include <cctype>
 #include <charconv>

@@ -1,0 +1,117 @@
+// The optional components' kinds (solver/model/component_kind.hpp): their keys join the scene's
+// key table where they say, the loader parses each kind's keys once into its own typed
+// options (Config::components, in registration order), and the Simulation makes the
+// components from those options.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "solver/components/actuation.hpp"
+#include "solver/model/component_kind.hpp"
+#include "solver/components/control_volume_forces.hpp"
+#include "solver/components/markers.hpp"
+#include "solver/scene/scene.hpp"
+#include "solver/scene/scene_keys.hpp"
+#include "solver/model/simulation.hpp"
+#include "solver/components/tracers.hpp"
+#include "tests/fixtures/scene_text.hpp"
+
+namespace refmap {
+namespace {
+
+using testing::box_scene;
+using testing::disc_toml;
+using testing::kWalls;
+
+/// The position of table.name in scene_keys(), -1 if absent.
+long index_of(const std::string& table, const std::string& name) {
+  const auto& k = scene_keys();
+  for (std::size_t i = 0; i < k.size(); ++i)
+    if (k[i].table == table && k[i].name == name) return long(i);
+  return -1;
+}
+
+TEST(ComponentKinds, KeysAreInTheTableOnceWhereTheKindSays) {
+  for (const ComponentKind& kind : component_kinds())
+    for (const KeyDef& k : kind.keys) {
+      int n = 0;
+      for (const KeyDef& s : scene_keys()) n += s.table == k.table && s.name == k.name;
+      EXPECT_EQ(n, 1) << k.dotted() << " of kind " << kind.name;
+    }
+  // the anchors: output.wall_stress right after output.diagnostics_every, output.body_force
+  // after it, solid.markers right after solid.clamp; the kinds' own tables after theirs
+  EXPECT_EQ(index_of("output", "wall_stress"), index_of("output", "diagnostics_every") + 1);
+  EXPECT_EQ(index_of("output", "body_force"), index_of("output", "wall_stress") + 1);
+  EXPECT_EQ(index_of("solid", "markers"), index_of("solid", "clamp") + 1);
+  EXPECT_EQ(index_of("solid", "boundary_markers"), index_of("solid", "markers") + 1);
+  EXPECT_EQ(index_of("solid", "actuation"), index_of("solid", "boundary_markers") + 1);
+  std::vector<std::string> tables;
+  for (const TableDef& t : scene_tables()) tables.push_back(t.name);
+  const auto at = [&](const char* name) { return std::find(tables.begin(), tables.end(), name) - tables.begin(); };
+  EXPECT_EQ(at("tracers"), at("probe") + 1);
+  EXPECT_EQ(at("solid.actuation"), at("solid") + 1);
+  // the registration order is the order of the hooks: actuation before the tracers
+  ASSERT_GE(component_kinds().size(), 5u);
+  EXPECT_EQ(component_kinds()[0].name, "actuation");
+  EXPECT_EQ(component_kinds()[1].name, "tracers");
+}
+
+TEST(ComponentKinds, OptionsAreParsedOnceIntoTypes) {
+  const std::string text =
+      box_scene(16, kWalls,
+                "[output]\nbody_force = \"control_volume\"\n"
+                "[[tracers]]\nline = [[0.1, 0.2], [0.3, 0.2]]\nn = 5\n"
+                "[[tracers]]\nbox = [[0.1, 0.1], [0.9, 0.3]]\nnx = 4\nny = 2\n" +
+                    disc_toml("a", 0.5, 0.6, 0.2, 1.0, "markers = [[0.5, 0.6]]\nboundary_markers = 3\n") +
+                    disc_toml("b", 0.5, 0.15, 0.1, 1.0, "actuation = { stretch_x = \"1 + 0.1*t\" }\n"));
+  const Config c = load_scene_string(text, "kinds.toml");
+  // present in registration order; wall stress is off (its default)
+  std::vector<std::string> names;
+  for (const auto& [name, o] : c.components) names.push_back(name);
+  EXPECT_EQ(names, (std::vector<std::string>{"actuation", "tracers", "markers", "body forces"}));
+  EXPECT_EQ(c.component_options<ComponentOptions>("wall stress"), nullptr);
+
+  const auto* tr = c.component_options<TracerOptions>("tracers");
+  ASSERT_NE(tr, nullptr);
+  ASSERT_EQ(tr->seeds.size(), 2u);
+  EXPECT_FALSE(tr->seeds[0].box);
+  EXPECT_EQ(tr->seeds[0].n, 5);
+  EXPECT_EQ(tr->seeds[0].x1, 0.3);
+  EXPECT_TRUE(tr->seeds[1].box);
+  EXPECT_EQ(tr->seeds[1].nx * tr->seeds[1].ny, 8);
+
+  const auto* mk = c.component_options<MarkerOptions>("markers");
+  ASSERT_NE(mk, nullptr);
+  ASSERT_EQ(mk->per_solid.size(), 2u);
+  EXPECT_EQ(mk->per_solid[0].points.size(), 1u);
+  EXPECT_EQ(mk->per_solid[0].boundary, 3);
+  EXPECT_EQ(mk->per_solid[1].boundary, 0);
+
+  const auto* ac = c.component_options<ActuationOptions>("actuation");
+  ASSERT_NE(ac, nullptr);
+  ASSERT_EQ(ac->per_solid.size(), 2u);
+  EXPECT_FALSE(ac->per_solid[0].enabled());
+  EXPECT_EQ(ac->per_solid[1].stretch_x.text(), "1 + 0.1*t");
+  EXPECT_TRUE(ac->per_solid[1].shear.empty());
+
+  // the Simulation makes one component per kind: 5 + 8 tracers, 1 + 3 markers
+  Simulation sim(c);
+  ASSERT_NE(sim.tracers(), nullptr);
+  EXPECT_EQ(sim.tracers()->size(), 13);
+  ASSERT_NE(sim.markers(), nullptr);
+  EXPECT_EQ(sim.markers()->points().size(), 4u);
+  EXPECT_NE(sim.control_volume_forces(), nullptr);
+  EXPECT_EQ(sim.components().size(), 4u);
+}
+
+TEST(ComponentKinds, ASceneWithoutThemHasNone) {
+  const Config c = load_scene_string(box_scene(16, kWalls, "[output]\nwall_stress = false\n"), "none.toml");
+  EXPECT_TRUE(c.components.empty());
+  Simulation sim(c);
+  EXPECT_TRUE(sim.components().empty());
+}
+
+}  // namespace
+}  // namespace refmap
