@@ -110,6 +110,11 @@ std::span<const OptionName<XiFlux>> option_names(XiFlux) {
   return span_of(n);
 }
 
+std::span<const OptionName<XiVelocity>> option_names(XiVelocity) {
+  static const OptionName<XiVelocity> n[] = {{XiVelocity::Face, "face"}, {XiVelocity::Cell, "cell"}};
+  return span_of(n);
+}
+
 std::span<const OptionName<PoissonMethod>> option_names(PoissonMethod) {
   static const OptionName<PoissonMethod> n[] = {
       {PoissonMethod::Multigrid, "multigrid"}, {PoissonMethod::Cg, "cg"}, {PoissonMethod::Mgpcg, "mgpcg"}};

@@ -43,6 +43,7 @@ std::span<const OptionName<ViscousTime>> option_names(ViscousTime);
 std::span<const OptionName<SolidStressTime>> option_names(SolidStressTime);
 std::span<const OptionName<JumpFlux>> option_names(JumpFlux);
 std::span<const OptionName<XiFlux>> option_names(XiFlux);
+std::span<const OptionName<XiVelocity>> option_names(XiVelocity);
 std::span<const OptionName<PoissonMethod>> option_names(PoissonMethod);
 std::span<const OptionName<MgCycle>> option_names(MgCycle);
 std::span<const OptionName<MgSmoother>> option_names(MgSmoother);
