@@ -26,7 +26,10 @@
 // below a fluid's speed past the solid for waves of a few cells (docs/reference_map.md,
 // "Which velocity carries xi"). With u_P every mode of the velocity strains xi. Both are
 // exact for affine xi under a rigid motion sampled at the cells; u_P is only
-// approximately divergence-free (Algorithm 1 step 9).
+// approximately divergence-free (Algorithm 1 step 9), and on the Turek & Hron flag (a 10:1
+// density jump) that divergence compresses xi until the map folds, far sooner than the
+// face form's wave grows: an experiment that failed (results/fsi.md, "The grid-scale wave
+// along the flag").
 #include "core/field.hpp"
 
 namespace refmap {

@@ -175,7 +175,8 @@ struct SolidsOptions {
   XiFlux xi_advection = XiFlux::VanLeer;
   /// the velocity that carries xi (eq. 3.3): Face, the projected face velocities (default),
   /// or Cell, the cell-centred velocity the solid stress accelerates: with face velocities
-  /// the solid's shortest waves have (almost) no restoring force (kernels/reference_map.hpp)
+  /// the solid's shortest waves have (almost) no restoring force (kernels/reference_map.hpp);
+  /// Cell is an experiment: on the Turek & Hron flag it fails sooner (results/fsi.md)
   XiVelocity xi_velocity = XiVelocity::Face;
   double solid_cfl = 0.5;   ///< P of section 4: dt <= P dx / sqrt(2 mu_s / rho_s)
   bool reinitialise = true; ///< fast-marching reinitialisation of phi0(xi)
