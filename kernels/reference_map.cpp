@@ -15,7 +15,9 @@ inline double van_leer_face(double quu, double qu, double qd) {
   return e * d > 0.0 ? qu + e * d / (e + d) : qu;
 }
 
-template <XiFlux F>
+/// kCell: (uf, vf) are the cell velocities, read at the cell for both of its faces
+/// (XiVelocity::Cell); else the face velocities.
+template <XiFlux F, bool kCell>
 void rhs_impl(CView xi_x, CView xi_y, CView phi, CView uf, CView vf, int ni, int nj, int i0,
               int j0, double dx, View kx, View ky) {
   const double s = -0.5 / dx;
@@ -42,8 +44,10 @@ void rhs_impl(CView xi_x, CView xi_y, CView phi, CView uf, CView vf, int ni, int
         ky(i, j) = 0.0;
         continue;
       }
-      const double ue = uf(i0 + i + 1, j0 + j), uw = uf(i0 + i, j0 + j);
-      const double vn = vf(i0 + i, j0 + j + 1), vs = vf(i0 + i, j0 + j);
+      const double ue = kCell ? uf(i0 + i, j0 + j) : uf(i0 + i + 1, j0 + j);
+      const double uw = uf(i0 + i, j0 + j);
+      const double vn = kCell ? vf(i0 + i, j0 + j) : vf(i0 + i, j0 + j + 1);
+      const double vs = vf(i0 + i, j0 + j);
       // u.grad q = [ue (q_e - q_i) - uw (q_w - q_i) + vn (q_n - q_i) - vs (q_s - q_i)] / dx
       kx(i, j) = 2.0 * s * (ue * incr(xi_x, i, j, 1, 0, ue) - uw * incr(xi_x, i, j, -1, 0, uw) +
                             vn * incr(xi_x, i, j, 0, 1, vn) - vs * incr(xi_x, i, j, 0, -1, vs));
@@ -58,9 +62,18 @@ void rhs_impl(CView xi_x, CView xi_y, CView phi, CView uf, CView vf, int ni, int
 void reference_map_rhs(CView xi_x, CView xi_y, CView phi, CView uf, CView vf, int ni, int nj,
                        int i0, int j0, double dx, View kx, View ky, XiFlux flux) {
   switch (flux) {
-    case XiFlux::Central: rhs_impl<XiFlux::Central>(xi_x, xi_y, phi, uf, vf, ni, nj, i0, j0, dx, kx, ky); break;
-    case XiFlux::Superbee: rhs_impl<XiFlux::Superbee>(xi_x, xi_y, phi, uf, vf, ni, nj, i0, j0, dx, kx, ky); break;
-    case XiFlux::VanLeer: rhs_impl<XiFlux::VanLeer>(xi_x, xi_y, phi, uf, vf, ni, nj, i0, j0, dx, kx, ky); break;
+    case XiFlux::Central: rhs_impl<XiFlux::Central, false>(xi_x, xi_y, phi, uf, vf, ni, nj, i0, j0, dx, kx, ky); break;
+    case XiFlux::Superbee: rhs_impl<XiFlux::Superbee, false>(xi_x, xi_y, phi, uf, vf, ni, nj, i0, j0, dx, kx, ky); break;
+    case XiFlux::VanLeer: rhs_impl<XiFlux::VanLeer, false>(xi_x, xi_y, phi, uf, vf, ni, nj, i0, j0, dx, kx, ky); break;
+  }
+}
+
+void reference_map_rhs_cell(CView xi_x, CView xi_y, CView phi, CView u, CView v, int ni, int nj,
+                            int i0, int j0, double dx, View kx, View ky, XiFlux flux) {
+  switch (flux) {
+    case XiFlux::Central: rhs_impl<XiFlux::Central, true>(xi_x, xi_y, phi, u, v, ni, nj, i0, j0, dx, kx, ky); break;
+    case XiFlux::Superbee: rhs_impl<XiFlux::Superbee, true>(xi_x, xi_y, phi, u, v, ni, nj, i0, j0, dx, kx, ky); break;
+    case XiFlux::VanLeer: rhs_impl<XiFlux::VanLeer, true>(xi_x, xi_y, phi, u, v, ni, nj, i0, j0, dx, kx, ky); break;
   }
 }
 

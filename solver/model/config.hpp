@@ -105,7 +105,10 @@ struct SolidSpec {
   ConstitutiveLaw model = ConstitutiveLaw::NeoHookean;
   double c3 = 0.0;            ///< strain-stiffening coefficient (model StrainStiffening only)
   double density = 1.0;       ///< rho_s
-  double viscosity = 0.0;     ///< Kelvin-Voigt solid viscosity (0: no viscous stress in the solid)
+  double viscosity = 0.0;     ///< Kelvin-Voigt solid viscosity (0: no viscous stress in the solid), grid part included
+  /// c of the grid-scale part c dx rho_s c_s that the scene adds to `viscosity` (c_s the
+  /// shear-wave speed at rest; 0: none)
+  double grid_viscosity = 0.0;
   /// Rigid: u = (u, v) + omega x (x - centre); Fluid: keep the fluid's
   SolidVelocity velocity = SolidVelocity::Rigid;
   double u = 0.0, v = 0.0, omega = 0.0;
@@ -147,6 +150,11 @@ struct SolidsOptions {
   /// Superbee (limited upwind: damp grid-scale xi oscillations where the solid moves; all
   /// three exact for an affine xi; see docs/reference_map.md)
   XiFlux xi_advection = XiFlux::VanLeer;
+  /// the velocity that carries xi (eq. 3.3): Face, the projected face velocities (default),
+  /// or Cell, the cell-centred velocity the solid stress accelerates: with face velocities
+  /// the solid's shortest waves have (almost) no restoring force (kernels/reference_map.hpp);
+  /// Cell is an experiment: on the Turek & Hron flag it fails sooner (results/fsi.md)
+  XiVelocity xi_velocity = XiVelocity::Face;
   double solid_cfl = 0.5;   ///< P of section 4: dt <= P dx / sqrt(2 mu_s / rho_s)
   bool reinitialise = true; ///< fast-marching reinitialisation of phi0(xi)
   double pde_tol = 1e-8;    ///< PDE baseline: stop when max |change| per iteration < tol * (largest known |xi|)

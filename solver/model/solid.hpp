@@ -54,10 +54,11 @@ class Solid {
   const Shape& shape() const { return *shape_; }
 
   // --- Algorithm 1, steps 1-2 -------------------------------------------------------
-  /// Eq. (3.3), RK-4 in time with the face velocities frozen over the step, central
-  /// differences, H = 1 only where phi < 0; the band is re-extrapolated before the
-  /// right-hand side of stages 2-4.
-  void advect(const Field& uf, const Field& vf, double dt);
+  /// Eq. (3.3), RK-4 in time with the velocity frozen over the step, H = 1 only where
+  /// phi < 0; the band is re-extrapolated before the right-hand side of stages 2-4. The
+  /// face velocities (uf, vf) carry xi, or the cell velocities (u, v) with
+  /// solids.xi_velocity = "cell" (kernels/reference_map.hpp).
+  void advect(const Field& uf, const Field& vf, const Field& u, const Field& v, double dt);
   /// Fills xi in the band from the cells advected (phi < 0) by the method of
   /// solids.extrapolation (least squares or the PDE; kernels/extrapolate.hpp).
   void extrapolate();

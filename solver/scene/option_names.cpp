@@ -104,4 +104,9 @@ std::span<const OptionName<XiFlux>> option_names(XiFlux) {
   return span_of(n);
 }
 
+std::span<const OptionName<XiVelocity>> option_names(XiVelocity) {
+  static const OptionName<XiVelocity> n[] = {{XiVelocity::Face, "face"}, {XiVelocity::Cell, "cell"}};
+  return span_of(n);
+}
+
 }  // namespace refmap

@@ -347,6 +347,7 @@ void parse_solids_options(const Ctx& ctx, const Table& top, Config& cfg) {
   s.require(o.stress_blend == StressBlend::Volume || (o.stress_form == StressForm::Cell && o.conservative),
             "stress_blend", "\"specific\" needs stress_discretisation = \"cell\" and conservative = true");
   o.xi_advection = s.option<XiFlux>("xi_advection");
+  o.xi_velocity = s.option<XiVelocity>("xi_velocity");
   o.solid_cfl = s.number("solid_cfl");
   o.reinitialise = s.boolean("reinitialise");
   o.pde_tol = s.number("pde_tol");
@@ -503,6 +504,14 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
     // velocity is imposed there, and a drop of mu across the interface would move the
     // effective no-slip surface
     sp.viscosity = rigid && !s.has("viscosity") ? cfg.mu_f : s.number("viscosity");
+    // a grid-scale Kelvin-Voigt viscosity c dx rho_s c_s (c_s = sqrt(2 mu_s / rho_s), the
+    // shear-wave speed at rest) on top of `viscosity`: the form of the peer code IncRMT's
+    // extra viscosity (Rycroft et al. 2020; c = 0.4-0.8 in its examples), which vanishes as
+    // the grid is refined
+    sp.grid_viscosity = s.number("grid_viscosity");
+    if (rigid && s.has("grid_viscosity"))
+      s.fail("grid_viscosity", "not used with motion = \"" + motion + "\" (a rigid body has no elastic waves)");
+    sp.viscosity += sp.grid_viscosity * g.dx * std::sqrt(sp.density * 2.0 * sp.mu_s);
     sp.model = s.option<ConstitutiveLaw>("model");
     if (const auto k = s.misplaced("model", to_string(sp.model)))
       s.fail(*k, "only used with model = \"strain_stiffening\"");

@@ -232,6 +232,11 @@ std::vector<KeyDef> build_keys() {
       choice<XiFlux>("solids", "xi_advection", dso.xi_advection,
                      "face values of ξ in its advection (eq. 3.3): second-order central (the paper's) or "
                      "Superbee / van Leer limited upwind"),
+      choice<XiVelocity>("solids", "xi_velocity", dso.xi_velocity,
+                         "the velocity that carries ξ (eq. 3.3): the projected face velocities, or the cell-centred "
+                         "velocity the solid stress accelerates (with face velocities the velocity's shortest waves "
+                         "strain ξ little or not at all, so the solid has no restoring force for them: "
+                         "docs/reference_map.md)"),
       num("solids", "solid_cfl", dso.solid_cfl, in(0, true, 8, false),  // above ~1 only for the stability study (bench/stability.py)
           "P of the solid time-step limit dt <= P dx / sqrt(2 mu_s / rho_s) (explicit stress; a fixed `time.dt` above "
           "it is refused); stiff solids fail from about 0.75 (docs/stability.md)"),
@@ -284,6 +289,9 @@ std::vector<KeyDef> build_keys() {
                     "required (`1.0` with `flow = \"prescribed\"`)"),
       num("solid", "viscosity", ds.viscosity, ge(0),
           "Kelvin-Voigt solid viscosity (0: no viscous stress in the solid beyond the fluid's)"),
+      num("solid", "grid_viscosity", ds.grid_viscosity, ge(0),
+          "c of a grid-scale Kelvin-Voigt viscosity c dx rho_s c_s added to `viscosity` (c_s = sqrt(2 mu_s / "
+          "rho_s)); vanishes as the grid is refined (the peer code IncRMT's extra viscosity has c = 0.4-0.8)"),
       choice<SolidVelocity>("solid", "velocity", ds.velocity,
                             "initial velocity inside the solid: rigid (from `u`, `v`, `omega`) or the fluid's"),
       only(num("solid", "u", ds.u, {}, "initial translation velocity, x"), "velocity", {"rigid"}),
