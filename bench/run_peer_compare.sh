@@ -66,7 +66,7 @@ run_refmap() {  # case circles m round scene
   rss=$(awk '/Maximum resident set size/ {print $NF}' "$dir.time")
   wall=$(grep "^# timed_wall_s:" "$t" | cut -d: -f2 | tr -d ' ')
   steps=$(grep "^# timed_steps:" "$t" | cut -d: -f2 | tr -d ' ')
-  dt=$(awk -F, 'NR == 1 {for (i = 1; i <= NF; i++) if ($i == "dt") c = i; next} c {v = $c} END {print v}' \
+  dt=$(awk -F, '/^#/ {next} !h {h = 1; for (i = 1; i <= NF; i++) if ($i == "dt") c = i; next} c {v = $c} END {print v}' \
        "$dir/diagnostics.csv")
   python3 -c "import sys; c,n,m,r,l,s,w,dt,rss=sys.argv[1:]; \
 print(f'{c},{n},{m},{r},refmap,{l},{s},{float(w):.4f},{float(w)*1e6/(int(m)**2*int(s)):.4f},{dt},{int(rss)/1024:.1f}')" \
