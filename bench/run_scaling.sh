@@ -10,7 +10,7 @@
 #
 # Instruction counts instead (repeatable on a loaded machine; valgrind cannot run AVX-512 code,
 # so BINARY is a build with -DREFMAP_NO_AVX512=ON):
-#   CALLGRIND=1 bash bench/run_scaling.sh build-prof/refmap   (CG_STEPS=3)
+#   CALLGRIND=1 bash bench/run_scaling.sh build-prof/refmap   (CG_STEPS=3; CG_SCENES: a subset)
 # runs each scene for CG_STEPS steps under callgrind, counting only refmap::run (the steps and
 # their per-step outputs, not the set-up), and writes results/scaling_1000_discs_instructions.csv:
 # instructions per cell and step, in all and in the per-solid phases, each inclusive of what
