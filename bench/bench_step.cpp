@@ -7,9 +7,13 @@
 //   WholeSolidStep/N   one soft disc in a decaying Taylor-Green vortex
 //                      (scenes/disc_tgv.toml: LSQ extrapolation, conservative cell stress,
 //                      multigrid to 1e-9) on N x N cells
-//   ManyDiscsStep/N    the same flow with N soft discs of radius 0.2/sqrt(N) on a lattice
-//                      (bench/scenes/many_discs_<N>.toml) on 512 x 512 cells: the solids'
-//                      phases run one solid per thread (kernels/loop.hpp, parallel_items)
+//   ManyDiscsStep/M/N  the same flow with N soft discs of radius 0.2/sqrt(N) on a lattice
+//                      on M x M cells (M = 512: the 16 and 64 discs of the scaling goals):
+//                      the solids' phases run one solid per thread (kernels/loop.hpp,
+//                      parallel_items)
+//   Discs1000Step/1024 the 1000 soft discs of radius 0.01 at random places, contact on
+//                      (bench/scenes/many_discs_1000.toml, the scene of bench/run_scaling.sh),
+//                      against WholeSolidStep/1024 (one disc of radius 0.2, same grid)
 //   IncrmtCircles42/128  the 42 spinning circles of the peer code IncRMT's multi-drop example
 //                      (bench/scenes/incrmt_circles_42.toml, walls, contact) on 128 x 128:
 //                      many small solids on a small grid, where per-solid threading and
@@ -177,11 +181,10 @@ void run_steps(benchmark::State& state, const char* toml, const std::string& sce
 void BM_WholeFluidStep(benchmark::State& state) { run_steps(state, kCavityRe1000, "cavity"); }
 void BM_WholeSolidStep(benchmark::State& state) { run_steps(state, kDiscTgv, "disc_tgv"); }
 void BM_ManyDiscsStep(benchmark::State& state) {
-  // range(0) is the number of discs; the grid is 512^2 (cells counted as 512^2 per step)
-  const int discs = int(state.range(0));
+  // range(0): the grid (n x n cells), range(1): the number of discs
+  const int n = int(state.range(0)), discs = int(state.range(1));
   static std::string toml;
   toml = many_discs_toml(discs);
-  const int n = 512;
   Cached& c = cached(toml.c_str(), "many_discs_" + std::to_string(discs), n);
   time_steps(state, c, n);
   state.counters["solids"] = discs;
@@ -221,7 +224,7 @@ BENCHMARK(BM_WholeSolidStep)
     ->UseRealTime();
 BENCHMARK(BM_ManyDiscsStep)
     ->Name("ManyDiscsStep")
-    ->Arg(16)
-    ->Arg(64)
+    ->Args({512, 16})
+    ->Args({512, 64})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

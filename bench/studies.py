@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Analyse the runs of bench/run_studies.sh (results/performance.md, "Whole-run studies").
 
-Reads <raw>/cost/<scene>/<t>t/rep<k>/timings.csv, <raw>/many/<scene>/1t/rep<k>/timings.csv
+Reads <raw>/cost/<scene>/<t>t/rep<k>/timings.csv, <raw>/many/<scene>/<t>t/rep<k>/timings.csv
 and <raw>/acc/<case>/<scheme>/<n>/ (timings.csv, probes, the last VTK frame), and writes
+(a part not run this time -- no raw runs -- keeps its rows of the existing CSV)
 
   <out>/scene_costs.csv          one row per study x scene x threads x phase: seconds over the
                                  timed steps, calls, us per cell per step, ms per step, the
@@ -135,6 +136,26 @@ def write_costs_csv(rows, path, header):
             w.writerow(out)
 
 
+def read_costs_csv(path, study):
+    """the rows of one study from an existing scene_costs.csv (typed as cost_rows makes them)"""
+    if not os.path.exists(path):
+        return []
+    ints = {"nx", "ny", "threads", "repetitions", "timed_steps", "calls", "solids", "solid_window_cells",
+            "solid_storage_bytes"}
+    out = []
+    with open(path) as f:
+        for r in csv.DictReader(ln for ln in f if not ln.startswith("#")):
+            if r["study"] != study:
+                continue
+            for k, v in r.items():
+                if k in ints:
+                    r[k] = int(v)
+                elif k in ("seconds", "us_per_cell_step", "ms_per_step") or (k == "speedup_vs_1t" and v):
+                    r[k] = float(v)
+            out.append(r)
+    return out
+
+
 def total(rows, study, scene, t, key="us_per_cell_step"):
     for r in rows:
         if r["study"] == study and r["scene"] == scene and r["threads"] == t and r["phase"] == "total":
@@ -162,14 +183,14 @@ def print_costs(rows):
 def plot_costs(rows, path, plt):
     cost_scenes = sorted({r["scene"] for r in rows if r["study"] == "cost"})
     many = sorted({r["scene"] for r in rows if r["study"] == "many"},
-                  key=lambda s: int(re.search(r"(\d+)$", s).group(1)))
+                  key=lambda s: next((r["nx"], r["solids"]) for r in rows if r["study"] == "many" and r["scene"] == s))
     phases = [p for p in PHASES if any(r["phase"] == p for r in rows)]
     phases += sorted({r["phase"] for r in rows} - set(phases) - {"total"})
     cmap = plt.get_cmap("tab20")
     colour = {p: cmap(i % 20) for i, p in enumerate(phases)}
     ncol = 2 if many else 1
     fig, axes = plt.subplots(1, ncol, figsize=(12 if many else 8, 5.5),
-                             gridspec_kw={"width_ratios": [max(len(cost_scenes), 1), 2]} if many else None)
+                             gridspec_kw={"width_ratios": [max(len(cost_scenes), 1), max(2, 0.6 * len(many))]} if many else None)
     axes = np.atleast_1d(axes)
 
     def bars(ax, study, scenes, threads, ylabel, key):
@@ -199,13 +220,13 @@ def plot_costs(rows, path, plt):
     bars(axes[0], "cost", cost_scenes, [1, 2], "µs per cell per step", "us_per_cell_step")
     axes[0].set_title("Paper scenes: whole step by phase, 1 and 2 threads", fontsize=10)
     if many:
-        bars(axes[1], "many", many, [1], "ms per step (512² box)", "ms_per_step")
+        bars(axes[1], "many", many, [1], "µs per cell per step", "us_per_cell_step")
         for k, sc in enumerate(many):
             r0 = next(r for r in rows if r["study"] == "many" and r["scene"] == sc)
-            tot = total(rows, "many", sc, 1, "ms_per_step") or 0
-            axes[1].text(k * 1.5, tot, f"{r0['solid_storage_bytes'] / 2**20:.1f} MiB", ha="center",
+            tot = total(rows, "many", sc, 1) or 0
+            axes[1].text(k * 1.5, tot, f"{r0['nx']}²\n{r0['solid_storage_bytes'] / 2**20:.1f} MiB", ha="center",
                          va="bottom", fontsize=7)
-        axes[1].set_title("1 disc vs N small discs (same area),\n1 thread; label: solids' storage", fontsize=10)
+        axes[1].set_title("1 disc vs N small discs (same area),\n1 thread; label: grid, solids' storage", fontsize=10)
     handles, labels = [], []
     for ax in axes:
         for h, l in zip(*ax.get_legend_handles_labels()):
@@ -411,7 +432,15 @@ def main():
         except ImportError:
             print("studies.py: no matplotlib, tables only", file=sys.stderr)
 
-    crow = cost_rows(a.raw, "cost") + cost_rows(a.raw, "many")
+    crow = []
+    for study in ("cost", "many"):
+        rows = cost_rows(a.raw, study)
+        if not rows:  # a part not run this time: its rows of the previous CSV stay
+            rows = read_costs_csv(os.path.join(a.out, "scene_costs.csv"), study)
+            if rows:
+                header.append(f"rows of study {study}: kept from the previous scene_costs.csv (their run is the "
+                              f"part's record above; the machine may differ from this header's)")
+        crow += rows
     if crow:
         write_costs_csv(crow, os.path.join(a.out, "scene_costs.csv"), header)
         print_costs(crow)

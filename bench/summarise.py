@@ -49,6 +49,9 @@ NO_GRID = {"FastMarchingSolidWindow",  # argument: disc radius in cells
            "MachineStreamCopy", "MachineStreamTriad", "MachineFmaPeak",  # MiB per array
            "ContactPairs/cells", "ContactPairs/all"}  # number of solids' boxes
 PARAM_LABELS = {"AdvectionStage": {"0": "central", "1": "superbee"}}
+# whole-step benchmarks of scenes with many solids (bench/bench_step.cpp), listed with the
+# Whole* ones in "Whole time steps" (ManyDiscsStep/<grid>/<discs>)
+STEP_BENCHES = {"ManyDiscsStep", "Discs1000Step", "IncrmtCircles42"}
 
 
 def parse_name(run_name: str):
@@ -246,7 +249,7 @@ def write_md(rows, path, header, threads):
         cells += [fmt(by_t[t]["GB_per_s"], 3) if t in by_t and by_t[t]["GB_per_s"] else "" for t in threads]
         out.append("| " + " | ".join(cells) + " |")
 
-    steps = [(k, v) for k, v in g.items() if k[0].startswith("Whole")]
+    steps = [(k, v) for k, v in g.items() if k[0].startswith("Whole") or k[0] in STEP_BENCHES]
     if steps:
         out += ["", "## Whole time steps", "",
                 "| benchmark | grid | threads | ms/step | µs/cell/step | Poisson cycles (last step) |",
@@ -256,7 +259,7 @@ def write_md(rows, path, header, threads):
                 if t in by_t:
                     r = by_t[t]
                     out.append(
-                        f"| {bench} | {grid}² | {t} | {fmt(r['median_time_us'] / 1e3)} | "
+                        f"| {bench}{'/' + param if param else ''} | {grid}² | {t} | {fmt(r['median_time_us'] / 1e3)} | "
                         f"{fmt(r['us_per_cell_step'], 3)} | {fmt(r['poisson_iters'], 3)} |"
                     )
     out += extra_md(rows, threads)

@@ -51,6 +51,24 @@ class Extrapolator {
   /// the window (negative inside), for methods that need it.
   virtual ExtrapStats extrapolate(View xi_x, View xi_y, View2<std::uint8_t> known, CView phi,
                                   int ni, int nj, int ng, double dx) = 0;
+  /// The same where only the cells within `layers` of the known ones are needed (reachable by
+  /// at most `layers` steps to an edge or corner neighbour: the stencil reach of the caller,
+  /// e.g. the RK-4 stages of eq. (3.3), whose right-hand side reads one or two cells beyond
+  /// Omega_S). A method that fills outward layer by layer (least squares: pass p fills layer
+  /// p from the cells known before it) stops there, and those cells get the bits of a full
+  /// call; the others fill their whole band (this default). Cells beyond keep their values
+  /// and stay unknown.
+  virtual ExtrapStats extrapolate_layers(View xi_x, View xi_y, View2<std::uint8_t> known, CView phi,
+                                         int ni, int nj, int ng, double dx, int layers) {
+    (void)layers;
+    return extrapolate(xi_x, xi_y, known, phi, ni, nj, ng, dx);
+  }
+  /// How far from the known cells extrapolate_layers(..., layers) writes: `layers` for a
+  /// method that stops there, -1 (anywhere in its band) for the others (this default).
+  virtual int layers_written(int layers) const {
+    (void)layers;
+    return -1;
+  }
 };
 
 namespace detail {

@@ -20,6 +20,7 @@
 // (bit-packed geometry moments + one 4-wide masked weighted sum per component); a disc of
 // radius 15 cells, 5 passes, 700 cells: ~44 us. Cells within 5 of the domain edge take a
 // scalar path (same results to round-off).
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -68,6 +69,15 @@ class LsqExtrapolator final : public Extrapolator {
                           int nj, int ng, double dx) override {
     return extrapolate_lsq(xi_x, xi_y, known, ni, nj, ng, dx, opt_, &ws_);
   }
+  /// The first min(passes, layers) passes: pass p reads only the cells known before it, so
+  /// the layers filled are those of a full call, bit for bit.
+  ExtrapStats extrapolate_layers(View xi_x, View xi_y, View2<std::uint8_t> known, CView /*phi*/, int ni,
+                                 int nj, int ng, double dx, int layers) override {
+    LsqOptions o = opt_;
+    o.passes = std::min(o.passes, std::max(layers, 0));
+    return extrapolate_lsq(xi_x, xi_y, known, ni, nj, ng, dx, o, &ws_);
+  }
+  int layers_written(int layers) const override { return std::min(opt_.passes, std::max(layers, 0)); }
 
  private:
   LsqOptions opt_;

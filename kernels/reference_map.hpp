@@ -37,6 +37,12 @@ namespace refmap {
 enum class XiFlux { Central, Superbee, VanLeer };
 enum class XiVelocity { Face, Cell };
 
+/// How far from a cell of Omega_S (phi < 0) reference_map_rhs reads xi, in cells along a grid
+/// direction: the central increments read the four neighbours, the limited ones one cell
+/// further (q_{i+2} and q_{i-1} for the face between i and i + 1). The RK-4 stages need the
+/// extrapolated band only this far (Solid::advect).
+constexpr int reference_map_rhs_reach(XiFlux flux) { return flux == XiFlux::Central ? 1 : 2; }
+
 /// k = -H u.grad(xi) for both components on a window (local (i, j) = global (i0+i, j0+j));
 /// uf, vf are the global face-velocity views; one ghost layer of xi is read.
 void reference_map_rhs(CView xi_x, CView xi_y, CView phi, CView uf, CView vf, int ni, int nj,

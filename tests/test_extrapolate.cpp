@@ -572,3 +572,46 @@ TEST(ExtrapolatorInterface, FactoryMethodsMatchTheirKernels) {
   bad.extrapolation = ExtrapolationMethod(99);
   EXPECT_THROW(make_extrapolator(bad), std::invalid_argument);
 }
+
+// Extrapolator::extrapolate_layers, what the RK-4 stages of eq. (3.3) call (Solid::advect):
+// least squares stops after `layers` passes, and the cells it fills -- exactly the cells
+// within `layers` (Chebyshev distance) of the known ones -- carry the same bits as after a
+// whole-band call (pass p reads only the cells known before it; tolerance 0). The rest stays
+// unknown. The PDE method fills its whole band, as extrapolate() does.
+TEST(ExtrapolatorInterface, LayersGiveTheWholeBandsInnerCells) {
+  for (const ExtrapolationMethod m : {ExtrapolationMethod::Lsq, ExtrapolationMethod::Pde}) {
+    const std::string method = to_string(m);
+    SolidsOptions so;
+    so.extrapolation = m;
+    for (int layers = 1; layers <= 2; ++layers) {
+      const auto full = make_extrapolator(so), part = make_extrapolator(so);
+      Case a(48, disc_phi(0.5, 0.5, 0.18), nl_x, nl_y), b(48, disc_phi(0.5, 0.5, 0.18), nl_x, nl_y);
+      const ExtrapStats sa = full->extrapolate(a.xx.view(), a.xy.view(), a.known.view(), a.phi.cview(), a.N, a.N,
+                                               a.ng, a.dx);
+      const ExtrapStats sb = part->extrapolate_layers(b.xx.view(), b.xy.view(), b.known.view(), b.phi.cview(), b.N,
+                                                      b.N, b.ng, b.dx, layers);
+      const auto near = dilate(b, layers);
+      const int W = b.N + 2 * b.ng;
+      long filled = 0;
+      for (int j = -b.ng; j < b.N + b.ng; ++j)
+        for (int i = -b.ng; i < b.N + b.ng; ++i) {
+          if (m == ExtrapolationMethod::Lsq)
+            ASSERT_EQ(b.known(i, j) != 0, near[std::size_t(j + b.ng) * W + (i + b.ng)] != 0)
+                << method << " layers " << layers << " " << i << " " << j;
+          else
+            ASSERT_EQ(b.known(i, j), a.known(i, j)) << method << " " << i << " " << j;
+          if (!b.known(i, j)) continue;
+          filled += !b.known0(i, j);
+          ASSERT_EQ(b.xx(i, j), a.xx(i, j)) << method << " layers " << layers << " " << i << " " << j;
+          ASSERT_EQ(b.xy(i, j), a.xy(i, j)) << method << " layers " << layers << " " << i << " " << j;
+        }
+      EXPECT_EQ(filled, sb.cells_filled) << method;
+      if (m == ExtrapolationMethod::Lsq) {
+        EXPECT_EQ(sb.passes, layers);
+        EXPECT_LT(sb.cells_filled, sa.cells_filled);  // the band is 6 layers
+      } else {
+        EXPECT_EQ(sb.cells_filled, sa.cells_filled);
+      }
+    }
+  }
+}

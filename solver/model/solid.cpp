@@ -104,46 +104,84 @@ void Solid::advect(const Field& uf, const Field& vf, const Field& u, const Field
   x0x_ = xi_x_;
   x0y_ = xi_y_;
   const XiFlux flux = opt_.xi_advection;
+  // stages 2-4 re-extrapolate the band only as far as the right-hand side reads it (one or
+  // two cells beyond Omega_S): those cells get the bits of a whole-band fill (least squares
+  // fills layer by layer), and the rest of the band is not read before the extrapolation
+  // after the step refills it
+  const int reach = reference_map_rhs_reach(flux);
+  // The RK-4 loops then run over the box of Omega_S grown by the cells the stages write:
+  // outside it k = 0 (H = 0) in every stage, so there the stage state and the result are
+  // xi^n, which those cells hold already (a method that writes anywhere in its band, the
+  // PDE, gets the whole window: its stage values there must be reset to xi^n as before).
+  const int written = extrapolator_->layers_written(reach);
+  int b0 = 0, b1 = ni, c0 = 0, c1 = nj;  // box [b0, b1) x [c0, c1), window-local
+  if (written >= 0) {
+    const int grow = std::max(reach, written);
+    b0 = c0 = 1 << 30;
+    b1 = c1 = -(1 << 30);
+    for (int j = 0; j < nj; ++j)
+      for (int i = 0; i < ni; ++i)
+        if (phi_(i, j) < 0.0) {
+          b0 = std::min(b0, i); b1 = std::max(b1, i + 1);
+          c0 = std::min(c0, j); c1 = std::max(c1, j + 1);
+        }
+    if (b1 <= b0) {  // no cell to advect: xi stays xi^n (k = 0 everywhere)
+      fill_ghosts(xi_x_, 0);
+      fill_ghosts(xi_y_, 1);
+      return;
+    }
+    b0 = std::max(b0 - grow, 0); b1 = std::min(b1 + grow, ni);
+    c0 = std::max(c0 - grow, 0); c1 = std::min(c1 + grow, nj);
+  }
   // xi itself is the stage state (the extrapolation and phi read it); x0 keeps xi^n
+  auto box = [&](Field& fld) { return shifted_view(fld.view(), b0, c0); };
   Rk4Fields f;
-  f.q0x = x0x_.cview();
-  f.q0y = x0y_.cview();
-  f.sx = f.outx = xi_x_.view();
-  f.sy = f.outy = xi_y_.view();
-  f.accx = kx_.view();  // k1 + 2 k2 + 2 k3 + k4
-  f.accy = ky_.view();
-  f.kx = k2x_.view();
-  f.ky = k2y_.view();
-  f.ni = ni;
-  f.nj = nj;
+  f.q0x = box(x0x_);
+  f.q0y = box(x0y_);
+  f.sx = f.outx = box(xi_x_);
+  f.sy = f.outy = box(xi_y_);
+  f.accx = box(kx_);  // k1 + 2 k2 + 2 k3 + k4
+  f.accy = box(ky_);
+  f.kx = box(k2x_);
+  f.ky = box(k2y_);
+  f.ni = b1 - b0;
+  f.nj = c1 - c0;
   fill_ghosts(xi_x_, 0);
   fill_ghosts(xi_y_, 1);
-  rk4_step(f, dt, [&](int stage, View kx, View ky) {
-    if (stage > 1) extrapolate();  // stages 2-4: the band of this stage's xi
+  rk4_step(f, dt, [&](int stage, View kx, View ky) {  // kx, ky: views of the box
+    if (stage > 1) extrapolate_layers(reach);
     // per piece of the window that does not cross a periodic side (the face velocities are
-    // read at the grid cells it covers; one piece, the whole window, unless it crosses one)
+    // read at the grid cells it covers; one piece, the whole window, unless it crosses one),
+    // within the box
     for_each_piece([&](const WindowPiece& p) {
-      auto at = [&](View v) { return shifted_view(v, p.li, p.lj); };
+      const int li = std::max(p.li, b0), lj = std::max(p.lj, c0);
+      const int mi = std::min(p.li + p.ni, b1) - li, mj = std::min(p.lj + p.nj, c1) - lj;
+      if (mi <= 0 || mj <= 0) return;
+      auto at = [&](View v) { return shifted_view(v, li, lj); };
+      auto atk = [&](View v) { return shifted_view(v, li - b0, lj - c0); };
       if (opt_.xi_velocity == XiVelocity::Cell)
-        reference_map_rhs_cell(at(xi_x_.view()), at(xi_y_.view()), at(phi_.view()), u.view(), v.view(), p.ni,
-                               p.nj, p.gi, p.gj, grid_.dx, at(kx), at(ky), flux);
+        reference_map_rhs_cell(at(xi_x_.view()), at(xi_y_.view()), at(phi_.view()), u.view(), v.view(), mi, mj,
+                               p.gi + (li - p.li), p.gj + (lj - p.lj), grid_.dx, atk(kx), atk(ky), flux);
       else
-        reference_map_rhs(at(xi_x_.view()), at(xi_y_.view()), at(phi_.view()), uf.view(), vf.view(), p.ni, p.nj,
-                          p.gi, p.gj, grid_.dx, at(kx), at(ky), flux);
+        reference_map_rhs(at(xi_x_.view()), at(xi_y_.view()), at(phi_.view()), uf.view(), vf.view(), mi, mj,
+                          p.gi + (li - p.li), p.gj + (lj - p.lj), grid_.dx, atk(kx), atk(ky), flux);
     });
   });
   fill_ghosts(xi_x_, 0);
   fill_ghosts(xi_y_, 1);
 }
 
-void Solid::extrapolate() {
+void Solid::extrapolate_layers(int layers) {
   // known = Omega_S of the current level set (the cells eq. 3.3 advects)
   known_.fill(0);
   for (int j = 0; j < nj_; ++j)
     for (int i = 0; i < ni_; ++i) known_(i, j) = phi_(i, j) < 0.0 ? 1 : 0;
   const auto t0 = std::chrono::steady_clock::now();
-  const ExtrapStats st = extrapolator_->extrapolate(xi_x_.view(), xi_y_.view(), known_.view(),
-                                                    phi_.view(), ni_, nj_, Grid::ng, grid_.dx);
+  const ExtrapStats st =
+      layers > 0 ? extrapolator_->extrapolate_layers(xi_x_.view(), xi_y_.view(), known_.view(), phi_.view(), ni_,
+                                                     nj_, Grid::ng, grid_.dx, layers)
+                 : extrapolator_->extrapolate(xi_x_.view(), xi_y_.view(), known_.view(), phi_.view(), ni_, nj_,
+                                              Grid::ng, grid_.dx);
   counters_.calls += 1;
   counters_.cells_filled += st.cells_filled;
   counters_.fallbacks += st.fallbacks;

@@ -61,7 +61,7 @@ class Solid {
   void advect(const Field& uf, const Field& vf, const Field& u, const Field& v, double dt);
   /// Fills xi in the band from the cells advected (phi < 0) by the method of
   /// solids.extrapolation (least squares or the PDE; kernels/extrapolate.hpp).
-  void extrapolate();
+  void extrapolate() { extrapolate_layers(0); }
   /// phi = phi0(xi) (eq. 3.2) on the band, reinitialised by fast marching; moves/grows
   /// the window when the band comes near its edge.
   void rebuild_level_set();
@@ -163,6 +163,9 @@ class Solid {
 
  private:
   void initialise();
+  /// extrapolate(); layers > 0: only the cells within `layers` of Omega_S are needed
+  /// (Extrapolator::extrapolate_layers).
+  void extrapolate_layers(int layers);
   /// Chooses the window for the current band (plus margin) and copies the overlap.
   void fit_window(bool force);
   /// The window [lo, hi) of one direction for a band over cells [a, b) (n cells, periodic
