@@ -8,8 +8,9 @@ one row per run to results/implicit_variational.csv: exit code, steps, the large
 energy (kinetic + elastic) over its start, its growth over the second half (largest energy
 there over the value at the middle row), the largest area drift, the final energy.
 
+    python3 bench/variational_study.py     # the whole PLAN below, ~3 min on a shared 2-core machine
     python3 bench/variational_study.py [--bin build/refmap] [--out results] [--grid 64]
-                                       [--methods a,b] [--mus 100,1e5] [--ps 1,2,4,8,16]
+                                       [--methods a,b --mus 100,1e5 --ps 1,2,4,8,16]   # a subset
 
 docs/implicit.md ("The variational force") and results/implicit.md read this CSV.
 """
@@ -38,7 +39,17 @@ METHODS = {
                                             'solids.stress_discretisation="variational"']),
     "semi_variational_k0.25": (True, SEMI + ["time.solid_implicit_k=0.25",
                                              'solids.stress_discretisation="variational"']),
+    # the variational force with the narrower energy weight w_V = 0.5 (1.5 cells inset)
+    "explicit_variational_w0.5": (False, ['solids.stress_discretisation="variational"',
+                                          "solids.variational_width=0.5"]),
+    "semi_variational_k0.5_w0.5": (True, SEMI + ["time.solid_implicit_k=0.5", "solids.variational_width=0.5",
+                                                 'solids.stress_discretisation="variational"']),
 }
+
+# what results/implicit_variational.csv holds (the default run): every method at 1e2 and 1e5,
+# the two semi-implicit variational ones also at 1e3 and 1e4 past the cell limit
+PLAN = [(list(METHODS), "100,1e5", "0.5,1,4,8,16"),
+        (["semi_variational_k0.25", "semi_variational_k0.5"], "1e3,1e4", "4,8")]
 
 
 def run(binary, raw, tag, sets):
@@ -84,10 +95,11 @@ def main():
             old = list(csv.DictReader(f))
     new = []
     n = a.grid
-    for m in a.methods.split(","):
+    plan = [(a.methods.split(","), a.mus, a.ps)] if a.methods else PLAN
+    for m, mus, ps in [(m, mus, ps) for (ms, mus, ps) in plan for m in ms]:
         implicit, sets0 = METHODS[m]
-        for mu in [float(x) for x in a.mus.split(",")]:
-            for p in [float(x) for x in a.ps.split(",")]:
+        for mu in [float(x) for x in mus.split(",")]:
+            for p in [float(x) for x in ps.split(",")]:
                 if not implicit and p >= 8:  # solids.solid_cfl must stay below 8 (scene_keys)
                     continue
                 sets = sets0 + [f"grid.nx={n}", f"grid.ny={n}", "time.end=100", f"time.max_steps={a.steps}",
