@@ -42,6 +42,12 @@ METHODS = {
     # the variational force with the narrower energy weight w_V = 0.5 (1.5 cells inset)
     "explicit_variational_w0.5": (False, ['solids.stress_discretisation="variational"',
                                           "solids.variational_width=0.5"]),
+    # the variational force with xi moved by the cell velocity through the same central
+    # gradient (solids.xi_advection = "cell_central", the transport it pairs with exactly)
+    "explicit_variational_cell": (False, ['solids.stress_discretisation="variational"',
+                                          'solids.xi_advection="cell_central"']),
+    "semi_variational_k0.5_cell": (True, SEMI + ["time.solid_implicit_k=0.5", 'solids.xi_advection="cell_central"',
+                                                 'solids.stress_discretisation="variational"']),
     "semi_variational_k0.5_w0.5": (True, SEMI + ["time.solid_implicit_k=0.5", "solids.variational_width=0.5",
                                                  'solids.stress_discretisation="variational"']),
 }
@@ -49,7 +55,8 @@ METHODS = {
 # what results/implicit_variational.csv holds (the default run): every method at 1e2 and 1e5,
 # the two semi-implicit variational ones also at 1e3 and 1e4 past the cell limit
 PLAN = [(list(METHODS), "100,1e5", "0.5,1,4,8,16"),
-        (["semi_variational_k0.25", "semi_variational_k0.5"], "1e3,1e4", "4,8")]
+        (["semi_variational_k0.25", "semi_variational_k0.5"], "1e3,1e4", "4,8"),
+        (["semi_variational_k0.5_cell"], "1e3,1e4", "1,4,8")]
 
 
 def run(binary, raw, tag, sets):

@@ -17,11 +17,18 @@
 
 namespace refmap {
 
-enum class XiFlux { Central, Superbee, VanLeer };
+/// CellCentral: central differences of xi times the CELL velocity, k = -(u_c . grad_h) xi
+/// (grad_h the central gradient of eq. 3.1): the transport the variational solid force
+/// (kernels/variational_stress.hpp) pairs with exactly; reference_map_rhs_cell below.
+enum class XiFlux { Central, Superbee, VanLeer, CellCentral };
 
 /// k = -H u.grad(xi) for both components on a window (local (i, j) = global (i0+i, j0+j));
 /// uf, vf are the global face-velocity views; one ghost layer of xi is read.
 void reference_map_rhs(CView xi_x, CView xi_y, CView phi, CView uf, CView vf, int ni, int nj,
                        int i0, int j0, double dx, View kx, View ky, XiFlux flux = XiFlux::Central);
+
+/// XiFlux::CellCentral: k = -H (u . grad_h) xi with the global cell velocity views u, v.
+void reference_map_rhs_cell(CView xi_x, CView xi_y, CView phi, CView u, CView v, int ni, int nj, int i0, int j0,
+                            double dx, View kx, View ky);
 
 }  // namespace refmap

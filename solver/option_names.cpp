@@ -107,7 +107,8 @@ std::span<const OptionName<SolidStressTime>> option_names(SolidStressTime) {
 
 std::span<const OptionName<XiFlux>> option_names(XiFlux) {
   static const OptionName<XiFlux> n[] = {
-      {XiFlux::Central, "central"}, {XiFlux::Superbee, "superbee"}, {XiFlux::VanLeer, "vanleer"}};
+      {XiFlux::Central, "central"}, {XiFlux::Superbee, "superbee"}, {XiFlux::VanLeer, "vanleer"},
+      {XiFlux::CellCentral, "cell_central"}};
   return span_of(n);
 }
 

@@ -319,7 +319,8 @@ std::vector<KeyDef> build_keys() {
                           "cell stress in the conservative form only"),
       choice<XiFlux>("solids", "xi_advection", dso.xi_advection,
                      "face values of ξ in its advection (eq. 3.3): second-order central (the paper's) or "
-                     "Superbee / van Leer limited upwind"),
+                     "Superbee / van Leer limited upwind, or `\"cell_central\"`: central differences times the cell velocity "
+                     "(the transport the variational stress pairs with exactly; docs/implicit.md)"),
       num("solids", "solid_cfl", dso.solid_cfl, in(0, true, 8, false),  // above ~1 only for the stability study (bench/stability.py)
           "P of the solid time-step limit dt <= P dx / sqrt(2 mu_s / rho_s) (explicit stress; a fixed `time.dt` above "
           "it is refused); stiff solids fail from about 0.75 (docs/stability.md)"),

@@ -235,7 +235,7 @@ void Simulation::update_solids(double dt) {
     const auto t0 = clock::now();
     // a rigid body's reference map is set from its pose, not advected (solver/rigid_body.hpp)
     const bool rigid = bodies_ && bodies_->rigid(k);
-    if (!rigid) s.advect(uf_, vf_, dt);
+    if (!rigid) s.advect(uf_, vf_, dt, &u_, &v_);
     const double t_adv = std::chrono::duration<double>(clock::now() - t0).count();
     if (!rigid) s.extrapolate();
     if (bodies_) bodies_->place(k, solids_);  // rigid: the whole map; clamped: inside its body

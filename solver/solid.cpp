@@ -92,7 +92,7 @@ void Solid::fill_ghosts(Field& f, int component) const {
     }
 }
 
-void Solid::advect(const Field& uf, const Field& vf, double dt) {
+void Solid::advect(const Field& uf, const Field& vf, double dt, const Field* u, const Field* v) {
   // RK-4 for eq. (3.3). H (phi < 0) and the face velocities are frozen over the step.
   // Outside Omega_S, xi is not advected (H = 0) but is the extrapolation of the values
   // inside: the right-hand side of every stage is evaluated on the extrapolation of that
@@ -125,8 +125,12 @@ void Solid::advect(const Field& uf, const Field& vf, double dt) {
     // read at the grid cells it covers; one piece, the whole window, unless it crosses one)
     for_each_piece([&](const WindowPiece& p) {
       auto at = [&](View v) { return shifted_view(v, p.li, p.lj); };
-      reference_map_rhs(at(xi_x_.view()), at(xi_y_.view()), at(phi_.view()), uf.view(), vf.view(), p.ni, p.nj,
-                        p.gi, p.gj, grid_.dx, at(kx), at(ky), flux);
+      if (flux == XiFlux::CellCentral)
+        reference_map_rhs_cell(at(xi_x_.view()), at(xi_y_.view()), at(phi_.view()), u->view(), v->view(), p.ni, p.nj,
+                               p.gi, p.gj, grid_.dx, at(kx), at(ky));
+      else
+        reference_map_rhs(at(xi_x_.view()), at(xi_y_.view()), at(phi_.view()), uf.view(), vf.view(), p.ni, p.nj,
+                          p.gi, p.gj, grid_.dx, at(kx), at(ky), flux);
     });
   });
   fill_ghosts(xi_x_, 0);

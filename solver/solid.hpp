@@ -57,7 +57,8 @@ class Solid {
   /// Eq. (3.3), RK-4 in time with the face velocities frozen over the step, central
   /// differences, H = 1 only where phi < 0; the band is re-extrapolated before the
   /// right-hand side of stages 2-4.
-  void advect(const Field& uf, const Field& vf, double dt);
+  /// u, v: the cell velocity, read by solids.xi_advection = "cell_central" only.
+  void advect(const Field& uf, const Field& vf, double dt, const Field* u = nullptr, const Field* v = nullptr);
   /// Fills xi in the band from the cells advected (phi < 0) by the method of
   /// solids.extrapolation (least squares or the PDE; kernels/extrapolate.hpp).
   void extrapolate();
