@@ -77,4 +77,21 @@ void reference_map_rhs_cell(CView xi_x, CView xi_y, CView phi, CView u, CView v,
   }
 }
 
+void reference_map_rhs_cell(CView xi_x, CView xi_y, CView phi, CView u, CView v, int ni, int nj, int i0, int j0,
+                            double dx, View kx, View ky) {
+  const double s = -0.5 / dx;
+  parallel_rows(0, nj, ni, [&](int j) {
+    for (int i = 0; i < ni; ++i) {
+      if (!(phi(i, j) < 0.0)) {  // H = 0 outside Omega_S, eq. (3.4)
+        kx(i, j) = 0.0;
+        ky(i, j) = 0.0;
+        continue;
+      }
+      const double uc = u(i0 + i, j0 + j), vc = v(i0 + i, j0 + j);
+      kx(i, j) = s * (uc * (xi_x(i + 1, j) - xi_x(i - 1, j)) + vc * (xi_x(i, j + 1) - xi_x(i, j - 1)));
+      ky(i, j) = s * (uc * (xi_y(i + 1, j) - xi_y(i - 1, j)) + vc * (xi_y(i, j + 1) - xi_y(i, j - 1)));
+    }
+  });
+}
+
 }  // namespace refmap

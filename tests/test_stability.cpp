@@ -261,6 +261,62 @@ TEST(StabilityLimits, SemiImplicitReachConvergesToExplicit) {
 }
 
 // sweep b: limit amplitude = 1 A0 for lsq 2.83 (64^2, to t = 2)
+// The variational solid force (solids.stress_discretisation = "variational",
+// kernels/variational_stress.hpp; docs/implicit.md, "The variational force"; numbers in
+// results/implicit_variational.csv, `python3 bench/variational_study.py`): with the
+// semi-implicit splitting it keeps the stiff disc (mu_s / rho_s = 1e5, 64^2, 400 steps) bounded
+// at P = 8, where the same splitting on the paper's cell stress blows up (exit 3 after 350
+// steps, energy x 5e6). Measured with k = 0.25: largest total energy 1.16 E0 (a start-up rise,
+// then it only falls: e_end 0.59 E0), area drift 0.056 %. The 1 % energy bound is NOT
+// met (the start-up rise); the bounds below sit between the measured values and a failure.
+namespace {
+std::vector<std::string> variational_case(double mu, double p, double k, bool variational) {
+  char dt[64];
+  std::snprintf(dt, sizeof dt, "time.dt_max=%.17g", p / 64.0 / std::sqrt(2.0 * mu));
+  std::vector<std::string> s{"grid.nx=64", "grid.ny=64", "time.end=100", "time.max_steps=400",
+                             "time.viscous=\"implicit\"", "time.solid_stress=\"semi_implicit\"",
+                             "time.solid_implicit_k=" + std::to_string(k), "solid.0.mu_s=" + std::to_string(mu), dt};
+  if (variational) s.push_back("solids.stress_discretisation=\"variational\"");
+  return s;
+}
+}  // namespace
+
+TEST(StabilityLimits, VariationalForceKeepsStiffDiscBoundedPastTheCellLimit) {
+  const Outcome v = run_disc_tgv("variational_1e5_P8", variational_case(1e5, 8.0, 0.25, true));
+  ASSERT_FALSE(v.failed) << v.failure;
+  EXPECT_LE(v.area_drift, 0.005);  // measured 0.00056
+  EXPECT_LT(v.energy_rise, 0.3);   // measured 0.16 (the cell stress below: x 5e6)
+  EXPECT_LT(v.e_end, 0.8 * v.e_start);  // measured 0.59: after the start-up rise it only falls
+  const Outcome c = run_disc_tgv("cell_1e5_P8", variational_case(1e5, 8.0, 0.5, false));
+  EXPECT_TRUE(c.failed || c.energy_rise > 1e3) << c.energy_rise;
+}
+
+// What keeps the variational force from being the answer: at small steps it GAINS energy
+// (a semi-discrete defect, not a time-step limit: the explicit variational run at P = 0.5
+// ends at 16 E0 (mu_s / rho_s = 100) and 624 E0 (1e5) after 400 steps, the cell stress at
+// 0.88 and 0.90). Semi-implicit, k = 0.5, mu_s / rho_s = 1e5, P = 0.5: measured 3.7 E0 at the
+// end. A fix of the defect makes this test fail: then replace it by the stable bound.
+TEST(StabilityLimits, VariationalForceGainsEnergyAtSmallSteps) {
+  const Outcome v = run_disc_tgv("variational_1e5_P0.5", variational_case(1e5, 0.5, 0.5, true));
+  EXPECT_FALSE(v.failed) << v.failure;
+  EXPECT_GT(v.energy_rise, 1.0);  // measured 2.7
+}
+
+// The small-step gain above is the transport's: with xi moved by the cell velocity through
+// the same central gradient the force uses (solids.xi_velocity = "cell" with xi_advection = "central", the exact
+// pairing of the energy identity) the explicit variational run is stable by the study's rule.
+// Measured (mu_s / rho_s = 100, 64^2, P = 0.5, 400 steps): largest energy 1.000 E0 (it only
+// falls, to 0.89 E0), area drift 0.57 % (the cell velocity is not discretely divergence-free).
+TEST(StabilityLimits, VariationalForceWithCellTransportIsStableAtSmallSteps) {
+  const Outcome o = run_disc_tgv("variational_cell_P0.5",
+                                 {"grid.nx=64", "grid.ny=64", "time.end=100", "time.max_steps=400",
+                                  "solid.0.mu_s=100", "solids.solid_cfl=0.5",
+                                  "solids.stress_discretisation=\"variational\"",
+                                  "solids.xi_velocity=\"cell\"", "solids.xi_advection=\"central\""});
+  expect_stable(o);
+  EXPECT_LT(o.e_end, 0.95 * o.e_start);  // measured 0.89; the face transport: 16 E0
+}
+
 TEST(StabilityLimits, DeformationBelowLimitIsStable) {
   const Outcome o = run_disc_tgv("amp_0.8", amplitude_case(0.8));
   expect_stable(o);

@@ -257,6 +257,23 @@ TEST_F(Survival, BlowUpIsExit3NamingStepAndTime) {
   EXPECT_FALSE(fs::exists(dir_ / "refused" / "diagnostics.csv"));
 }
 
+TEST_F(Survival, VariationalForceFailureIsExit3WithTheFailingState) {
+  // the variational solid force (docs/implicit.md) with the semi-implicit splitting at
+  // k = 0.25 past its bound: mu_s / rho_s = 100, 64^2, P = 8 (dt_max = 8 dx / sqrt(2 mu_s)):
+  // measured, the energy blows up and the run stops (step 158 with the frames of the scene, which
+  // move the steps onto the output times; step 324 without them, results/implicit_variational.csv)
+  const fs::path out = dir_ / "variational";
+  const Result r = run({"run", kScenes + "disc_tgv.toml", "--out", out.string(), "--threads", "1", "--quiet", "--set",
+                        "grid.nx=64", "--set", "grid.ny=64", "--set", "time.max_steps=400", "--set", "time.end=100",
+                        "--set", "solid.0.mu_s=100", "--set", "time.viscous=\"implicit\"", "--set",
+                        "time.solid_stress=\"semi_implicit\"", "--set", "time.solid_implicit_k=0.25", "--set",
+                        "solids.stress_discretisation=\"variational\"", "--set", "time.dt_max=0.008838834764831844"},
+                       dir_ / "v");
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_TRUE(fs::exists(out / "frame_failed.vti"));
+  EXPECT_NE(r.err.find("the failing state: " + (out / "frame_failed.vti").string()), std::string::npos) << r.err;
+}
+
 namespace {
 /// The FieldData TIME of a .vti frame (solver/io/vtk.cpp writes it with 17 digits).
 double vti_time(const fs::path& p) {

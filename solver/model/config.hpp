@@ -43,8 +43,9 @@ enum class SolidMotion { Free, Fixed, Prescribed, Pinned };
 enum class BodyForcing { Diffuse, Interpolated, Sharp };
 /// SolidsOptions::extrapolation: Algorithm 2 (least squares) or the PDE baseline.
 enum class ExtrapolationMethod { Lsq, Pde };
-/// SolidsOptions::stress_form: discretisation of the solid stress divergence.
-enum class StressForm { Cell, Face };
+/// SolidsOptions::stress_form: discretisation of the solid stress divergence. Variational:
+/// the energy-consistent force of kernels/variational_stress.hpp (docs/implicit.md).
+enum class StressForm { Cell, Face, Variational };
 /// SolidsOptions::stress_blend: the weight of a solid's stress in the mixture (eq. 3.6):
 /// Volume, the paper's 1 - H; Specific, (1 - H) rho_b / rho_s for a solid heavier than the
 /// fluid (rho_b = (1 - H) rho_s + H rho_f): the stress per unit mass blended by volume
@@ -145,6 +146,9 @@ struct SolidsOptions {
   /// the 2 dx-wide cell form leaves undamped in an inviscid solid, but was seen to gain
   /// energy in the disc-in-Taylor-Green case; see kernels/solid_stress.hpp)
   StressForm stress_form = StressForm::Cell;
+  /// StressForm::Variational: half-width w_V of the energy's weight 1 - H(phi + w_V + dx, w_V),
+  /// in cells (zero where a cell's stencil reaches an extrapolated cell, phi >= -dx)
+  double variational_width = 1.0;
   StressBlend stress_blend = StressBlend::Volume;  ///< solids.stress_blend (cell, conservative form)
   /// face values of xi in its advection (eq. 3.3): Central (the paper's), VanLeer or
   /// Superbee (limited upwind: damp grid-scale xi oscillations where the solid moves; all

@@ -10,6 +10,7 @@
 #include "kernels/reference_map.hpp"
 #include "kernels/rk4.hpp"
 #include "kernels/solid_stress.hpp"
+#include "kernels/variational_stress.hpp"
 #include "solver/model/extrapolation.hpp"
 #include "solver/model/time_step_limits.hpp"
 
@@ -312,6 +313,16 @@ void Solid::compute_model_stress(const Model& model) {
   // largest tangent shear modulus in the solid, for the time step
   max_wave_modulus_ = max_wave_modulus(model, sxx_.view(), sxy_.view(), syy_.view(), phi_.view(),
                                        ni_, nj_, wt_);
+  if (opt_.stress_form == StressForm::Variational) {
+    // the weight 1 - H(phi + w_V + dx, w_V) is zero wherever eq. (3.1) would read an
+    // extrapolated xi (docs/implicit.md, "The variational force")
+    if (pxx_.nx() != ni_ || pxx_.ny() != nj_)
+      for (Field* f : {&pxx_, &pxy_, &pyx_, &pyy_}) f->resize(ni_, nj_, Grid::ng);  // zero ghosts
+    const double wv = opt_.variational_width * grid_.dx;
+    variational_energy_ = variational_stress_tensor(model, xi_x_.view(), xi_y_.view(), phi_.view(), ni_, nj_,
+                                                    grid_.dx, wv, wv + grid_.dx, pxx_.view(), pxy_.view(),
+                                                    pyx_.view(), pyy_.view());
+  }
   if (opt_.stress_form == StressForm::Cell && !opt_.conservative)
     for (Field* f : {&sxx_, &sxy_, &syy_})  // ghosts are outside the band: zero stress
       for (int j = -Grid::ng; j < nj_ + Grid::ng; ++j)
@@ -330,7 +341,10 @@ double Solid::blend_model_stress(const Model& model, Field& sxx, Field& sxy, Fie
     auto at = [&](const Field& f) { return shifted_view(f.view(), p.li, p.lj); };
     energy += blend_stress(model, at(sxx_), at(sxy_), at(syy_), at(phi_), p.ni, p.nj, grid_.dx, wt_, sxx.view(),
                            sxy.view(), syy.view(), p.gi, p.gj, light_ratio_);
-    if (opt_.stress_form == StressForm::Face) {
+    if (opt_.stress_form == StressForm::Variational) {
+      add_variational_force(at(xi_x_), at(xi_y_), at(pxx_), at(pxy_), at(pyx_), at(pyy_), p.ni, p.nj, grid_.dx,
+                            fx.view(), fy.view(), p.gi, p.gj);
+    } else if (opt_.stress_form == StressForm::Face) {
       add_face_stress_force(model, at(xi_x_), at(xi_y_), at(phi_), p.ni, p.nj, grid_.dx, wt_, opt_.conservative,
                             fx.view(), fy.view(), p.gi, p.gj);
     } else if (!opt_.conservative) {
@@ -338,7 +352,9 @@ double Solid::blend_model_stress(const Model& model, Field& sxx, Field& sxy, Fie
                               fy.view(), p.gi, p.gj);
     }
   });
-  // Cell + conservative: the caller takes the divergence of the global blended tensor
+  // Cell + conservative: the caller takes the divergence of the global blended tensor.
+  // Variational: the blended tensor is output only; the energy is the one the force derives from
+  if (opt_.stress_form == StressForm::Variational) return variational_energy_;
   return energy;
 }
 
@@ -431,7 +447,7 @@ double Solid::min_dt(double p) const {
 std::size_t Solid::storage_bytes() const {
   std::size_t b = 0;
   for (const Field* f : {&xi_x_, &xi_y_, &phi_, &kx_, &ky_, &k2x_, &k2y_, &xs_, &ys_, &x0x_, &x0y_,
-                         &sxx_, &sxy_, &syy_})
+                         &sxx_, &sxy_, &syy_, &pxx_, &pxy_, &pyx_, &pyy_})
     b += f->raw_size() * sizeof(double);
   b += known_.raw_size() * sizeof(std::uint8_t);
   b += fmm_ws_.upos.capacity() * sizeof(double) + fmm_ws_.uneg.capacity() * sizeof(double) +

@@ -197,6 +197,10 @@ class Solid {
   int i0_ = 0, j0_ = 0, ni_ = 0, nj_ = 0;
   Field xi_x_, xi_y_, phi_, kx_, ky_, k2x_, k2y_, xs_, ys_, x0x_, x0y_;
   Field sxx_, sxy_, syy_;
+  /// solids.stress_discretisation = "variational": P = w dW/dA (kernels/variational_stress.hpp)
+  /// of the last stress evaluation and the energy it derives from (recomputed every step)
+  Field pxx_, pxy_, pyx_, pyy_;
+  double variational_energy_ = 0.0;
   Mask known_;
   FmmWorkspace fmm_ws_;
   std::unique_ptr<Extrapolator> extrapolator_;  ///< solids.extrapolation, owns its workspace

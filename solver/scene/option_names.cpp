@@ -72,7 +72,8 @@ std::span<const OptionName<ConstitutiveLaw>> option_names(ConstitutiveLaw) {
 }
 
 std::span<const OptionName<StressForm>> option_names(StressForm) {
-  static const OptionName<StressForm> n[] = {{StressForm::Cell, "cell"}, {StressForm::Face, "face"}};
+  static const OptionName<StressForm> n[] = {{StressForm::Cell, "cell"}, {StressForm::Face, "face"},
+                                              {StressForm::Variational, "variational"}};
   return span_of(n);
 }
 

@@ -343,6 +343,7 @@ void parse_solids_options(const Ctx& ctx, const Table& top, Config& cfg) {
   }
   o.conservative = s.boolean("conservative");
   o.stress_form = s.option<StressForm>("stress_discretisation");
+  o.variational_width = s.number("variational_width");
   o.stress_blend = s.option<StressBlend>("stress_blend");
   s.require(o.stress_blend == StressBlend::Volume || (o.stress_form == StressForm::Cell && o.conservative),
             "stress_blend", "\"specific\" needs stress_discretisation = \"cell\" and conservative = true");

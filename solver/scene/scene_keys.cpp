@@ -223,7 +223,13 @@ std::vector<KeyDef> build_keys() {
               "`true`: divergence of the blended stress; `false`: blend of the divergences"),
       choice<StressForm>("solids", "stress_discretisation", dso.stress_form,
                          "solid stress divergence: `\"cell\"`, the paper's cell-centred stress (eqs. 2.9, 3.1), "
-                         "or `\"face\"`, a compact face-based form"),
+                         "`\"face\"`, a compact face-based form, or `\"variational\"`, the force that is the "
+                         "derivative of the stored energy of the cells whose ξ is advected (weight moved inward "
+                         "by w_V + 1 cells, `variational_width`; docs/implicit.md)"),
+      num("solids", "variational_width", dso.variational_width, gt(0, "cells"),
+          "with `stress_discretisation = \"variational\"`: half-width w_V of the stored energy's weight "
+          "1 - H(phi + (w_V + 1) dx) (eq. 3.5 moved inward so that no weighted cell differences an extrapolated ξ), "
+          "in cells"),
       choice<StressBlend>("solids", "stress_blend", dso.stress_blend,
                           "weight of a solid's stress in the mixture: `\"volume\"`, the paper's 1 - H (eq. 3.6), or "
                           "`\"specific\"`, (1 - H) rho_b / rho_s for a solid heavier than the fluid (the stress per unit "
