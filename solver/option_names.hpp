@@ -40,6 +40,7 @@ std::span<const OptionName<ConstitutiveLaw>> option_names(ConstitutiveLaw);
 std::span<const OptionName<StressForm>> option_names(StressForm);
 std::span<const OptionName<StressBlend>> option_names(StressBlend);
 std::span<const OptionName<ViscousTime>> option_names(ViscousTime);
+std::span<const OptionName<Splitting>> option_names(Splitting);
 std::span<const OptionName<SolidStressTime>> option_names(SolidStressTime);
 std::span<const OptionName<JumpFlux>> option_names(JumpFlux);
 std::span<const OptionName<XiFlux>> option_names(XiFlux);
