@@ -10,7 +10,10 @@ of u (linear between samples) after which u stays positive. The reference bounds
 Schafer & Turek (1996), docs/references.md#cylinder-in-a-channel-at-re--20, are written as two more rows.
 The cost of each run sits beside its accuracy: steps, wall time, threads and ms per step.
 
-Usage: cylinder_summary.py [--convergence CSV] [--plot PNG] RUN_DIR... > results/cylinder_re20.csv
+Usage: cylinder_summary.py [--keep CSV] [--convergence CSV] [--plot PNG] RUN_DIR... > results/cylinder_re20.csv
+  --keep: the rows of an earlier summary (its runs' directories gone) are kept unless a RUN_DIR of
+    the same name replaces them (bench/run_cylinder.sh KEEP=1: add variants without re-running
+    the others).
   --convergence: per forcing and quantity, the error against the centre of the bounds on each
     grid (runs named <forcing>_dx_<dx>), the observed order between successive grids,
     log2(|e(dx)| / |e(dx/2)|), and from three successive grids the order of the differences,
@@ -75,6 +78,12 @@ def summarise(run):
     forcing = "diffuse"  # the scene's default
     if "forcing=" in first:
         forcing = first.split("forcing=")[1].split()[0].strip("'\"")
+    if "_dx_" in name:  # bench/run_cylinder.sh's variant: <forcing>[+hold][+inc]_dx_...
+        forcing = name.split("_dx_")[0]
+    load = ""  # the 1-minute load average at the run's start and end (bench/run_cylinder.sh)
+    if os.path.exists(run + "/load.txt"):
+        with open(run + "/load.txt") as f:
+            load = "-".join(f.read().split())
     return {
         "run": name,
         "forcing": forcing,
@@ -88,6 +97,7 @@ def summarise(run):
         "t_end": f"{float(last['time']):.4g}",
         "wall_s": f"{float(header_value(timings, 'wall_s')):.1f}",
         "ms_per_step": f"{1000 * float(header_value(timings, 'wall_s')) / max(1, int(last['step'])):.2f}",
+        "load": load,
         "c_D": f"{float(last['solid0_fx']) / q:.5f}",
         "c_L": f"{float(last['solid0_fy']) / q:.5f}",
         "dp": f"{float(pp[0][2]) - float(pp[1][2]):.5f}",
@@ -149,7 +159,8 @@ def plot(out, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, 4, figsize=(16, 4))
-    colours = {"diffuse": "tab:blue", "interpolated": "tab:orange", "sharp": "tab:green"}
+    colours = {"diffuse": "tab:blue", "interpolated": "tab:orange", "sharp": "tab:green", "sharp+hold": "tab:purple",
+               "sharp+inc": "tab:brown", "sharp+hold+inc": "tab:red"}
     by = grid_runs(out)
     for ax, q in zip(axes, QUANTITIES):
         for forcing, rows in by.items():
@@ -179,9 +190,11 @@ def plot(out, path):
 
 def main():
     args = sys.argv[1:]
-    conv = png = None
+    conv = png = keep = None
     while args and args[0].startswith("--"):
-        if args[0] == "--convergence":
+        if args[0] == "--keep":
+            keep = args[1]
+        elif args[0] == "--convergence":
             conv = args[1]
         elif args[0] == "--plot":
             png = args[1]
@@ -189,11 +202,20 @@ def main():
             sys.exit(f"unknown option {args[0]}")
         args = args[2:]
     out = [summarise(r) for r in args]
+    if keep and os.path.exists(keep):
+        names = {r["run"] for r in out}
+        with open(keep) as f:
+            kept = [r for r in csv.DictReader(f) if r["run"] not in names and not r["run"].startswith("reference_")]
+        for r in kept:
+            r.setdefault("load", "")
+            r["load"] = r["load"] or ""
+        out = sorted(kept + out, key=lambda r: r["run"])
     if conv:
         write_convergence(out, conv)
     if png:
         plot(out, png)
-    cols = list(out[0].keys())
+    cols = ["run", "forcing", "dx", "nx", "ny", "radius", "threads", "dt", "steps", "t_end", "wall_s", "ms_per_step",
+            "load", "c_D", "c_L", "dp", "L_a"]
     w = csv.DictWriter(sys.stdout, fieldnames=cols, lineterminator="\n")
     w.writeheader()
     for r in out:

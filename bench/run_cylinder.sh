@@ -3,16 +3,21 @@
 # docs/references.md#cylinder-in-a-channel-at-re--20): scenes/cylinder_re20.toml run to its steady state on several
 # grids with each rigid-body forcing (docs/bodies.md), then bench/cylinder_summary.py writes
 # results/cylinder_re20.csv (c_D, c_L, Delta p, recirculation length and the cost of each run:
-# steps, wall time, threads, ms per step; and the published bounds),
+# steps, wall time, threads, ms per step, the load average at its start and end; and the
+# published bounds),
 # results/cylinder_re20_convergence.csv (errors per grid and observed orders) and
 # results/figures/cylinder_re20_accuracy_vs_cost.png.
 #
-#   bash bench/run_cylinder.sh                  # 3 forcings x dx = 0.01, 0.005, 0.0025 + dt study
+#   bash bench/run_cylinder.sh                  # 4 variants x dx = 0.01, 0.005, 0.0025 + dt study
 #   FORCINGS=sharp GRIDS="0.01 0.005" bash bench/run_cylinder.sh
+#   KEEP=1 FORCINGS=sharp+hold+inc bash bench/run_cylinder.sh   # add one variant to the CSV
 #
 # Knobs: BIN (refmap executable, default build/refmap), RAW (run directories, default
-# /tmp/refmap_cylinder), FORCINGS (default "diffuse interpolated sharp"; each run is named
-# <forcing>_dx_<dx>[_dtN]), GRIDS (dx values among 0.01 0.005 0.0025 0.00125), THREADS
+# /tmp/refmap_cylinder), FORCINGS (default "diffuse interpolated sharp sharp+hold+inc": a
+# forcing, with "+hold" solid[0].forcing_hold = true and with "+inc" time.splitting =
+# "increment", docs/bodies.md; each run is named <variant>_dx_<dx>[_dtN]), KEEP (default 0;
+# 1: the rows of the existing CSV whose run directories are not in RAW are kept, so a
+# variant can be added without re-running the others), GRIDS (dx values among 0.01 0.005 0.0025 0.00125), THREADS
 # (default 1; the two finest grids use THREADS_FINE, default 1, with OMP_WAIT_POLICY=PASSIVE:
 # docs/performance.md, threads), VISCOUS ("explicit" or "implicit", default "implicit": on the finer grids the
 # explicit viscous limit rho dx^2 / (6 mu) is below the advective one, see results/validation.md),
@@ -37,9 +42,16 @@ VISCOUS="${VISCOUS:-implicit}"
 mkdir -p "$RAW"
 export OMP_WAIT_POLICY=PASSIVE
 
-run() {  # run FORCING NAME DX THREADS DT [extra --set ..., a later time.max_steps wins]
-  local forcing=$1 name=$1_$2 dx=$3 threads=$4 dt=$5
+run() {  # run VARIANT NAME DX THREADS DT [extra --set ..., a later time.max_steps wins]
+  local variant=$1 name=$1_$2 dx=$3 threads=$4 dt=$5
   shift 5
+  # a variant is a forcing with options: <forcing>[+hold][+inc][+rc] (+hold: solid[0].forcing_hold,
+  # +inc: time.splitting = "increment"; docs/bodies.md, docs/method.md)
+  local forcing=${variant%%+*} opts=()
+  case "$variant" in *+hold*) opts+=(--set "solid[0].forcing_hold=true") ;; esac
+  case "$variant" in *+inc*) opts+=(--set 'time.splitting="increment"') ;; esac
+  # +rc: time.rhie_chow_dt = the grid's own dt, 0.9278 dx, also in the dt study
+  case "$variant" in *+rc*) opts+=(--set "time.rhie_chow_dt=$(python3 -c "print(0.9278 * $dx)")") ;; esac
   if [ "${REUSE:-0}" = "1" ] && [ -f "$RAW/$name/timings.csv" ]; then
     echo "cylinder_re20: $name kept" >&2
     return
@@ -51,13 +63,17 @@ run() {  # run FORCING NAME DX THREADS DT [extra --set ..., a later time.max_ste
   [ "${T_STOP:-8}" != "0" ] && stop=(--set "time.max_steps=$(python3 -c "print(round(${T_STOP:-8} / $dt))")")
   echo "cylinder_re20: $name (dx = $dx, $nx x $ny, $threads thread(s), viscous = $VISCOUS, forcing = $forcing)" >&2
   rm -rf "${RAW:?}/$name"
+  local load0
+  load0=$(cut -d' ' -f1 /proc/loadavg)
   OMP_NUM_THREADS=$threads nice "$BIN" run scenes/cylinder_re20.toml --out "$RAW/$name" --quiet \
     --set grid.nx="$nx" --set grid.ny="$ny" --set time.dt="$dt" --set output.vtk=false --set output.diagnostics_every=10 \
-    --set time.viscous="\"$VISCOUS\"" --set "solid[0].forcing=\"$forcing\"" "${stop[@]}" "$@" > "$RAW/$name.log" 2>&1 \
-    || { cat "$RAW/$name.log" >&2; exit 1; }
+    --set time.viscous="\"$VISCOUS\"" --set "solid[0].forcing=\"$forcing\"" "${opts[@]}" "${stop[@]}" "$@" \
+    > "$RAW/$name.log" 2>&1 || { cat "$RAW/$name.log" >&2; exit 1; }
+  # the machine's 1-minute load average at the run's start and end (the summary's load column)
+  echo "$load0 $(cut -d' ' -f1 /proc/loadavg)" > "$RAW/$name/load.txt"
 }
 
-for forcing in ${FORCINGS:-diffuse interpolated sharp}; do
+for forcing in ${FORCINGS:-diffuse interpolated sharp sharp+hold+inc}; do
   for dx in $GRIDS; do
     threads="${THREADS:-1}"
     extra=()
@@ -81,6 +97,9 @@ CSV="${CSV:-results/cylinder_re20.csv}"
 mkdir -p results/figures
 dirs=()
 for d in "$RAW"/*/; do [ -f "$d/timings.csv" ] && dirs+=("${d%/}"); done
-/usr/bin/python3 bench/cylinder_summary.py --convergence "${CSV%.csv}_convergence.csv" \
-  --plot results/figures/cylinder_re20_accuracy_vs_cost.png "${dirs[@]}" > "$CSV"
+keep=()
+[ "${KEEP:-0}" = "1" ] && [ -f "$CSV" ] && keep=(--keep "$CSV")
+/usr/bin/python3 bench/cylinder_summary.py "${keep[@]}" --convergence "${CSV%.csv}_convergence.csv" \
+  --plot results/figures/cylinder_re20_accuracy_vs_cost.png "${dirs[@]}" > "$CSV.new"
+mv "$CSV.new" "$CSV"
 cat "$CSV" "${CSV%.csv}_convergence.csv"

@@ -55,6 +55,14 @@ enum class StressBlend { Volume, Specific };
 /// Config::viscous_time: the viscous stress forward Euler (eq. 5.2) or backward Euler in
 /// its compact part (solver/model/implicit_step.hpp, docs/implicit.md).
 enum class ViscousTime { Explicit, Implicit };
+/// Config::splitting (time.splitting): how the substeps of a step (advection, viscous step,
+/// projection) share the work. Split: Algorithm 1 as published -- the advection and the
+/// viscous step act on the velocity without the pressure gradient, which the projection
+/// applies whole, so a steady state of the scheme moves with dt. Increment: the advection
+/// carries the last pressure gradient and viscous force as sources and the viscous step
+/// solves for the change of the viscous force only, so in a steady state every substep
+/// leaves the velocity unchanged (docs/method.md, "Splitting").
+enum class Splitting { Split, Increment };
 /// Config::solid_time: the solid stress explicit, or explicit plus the stabilising implicit
 /// isotropic term eta = k G dt (1 - H) minus its explicit counterpart, or the
 /// upper-convected stress increment 2 mu_s dt (1 - H)(L b + b L^T) implicit (docs/implicit.md).
@@ -117,6 +125,9 @@ struct SolidSpec {
   /// its region (solver/model/rigid_body.hpp). A rigid body has no elastic stress (mu_s = 0).
   SolidMotion motion = SolidMotion::Free;
   BodyForcing forcing = BodyForcing::Diffuse;  ///< rigid bodies only
+  /// forcing = "sharp" only: the cells the forcing sets are held at their values of the
+  /// step's start through the advection and the viscous step (solver/model/rigid_body.hpp)
+  bool forcing_hold = false;
   /// Prescribed: the centre's path x(t), y(t) and the rotation rate omega(t) (expressions
   /// of t; the path starts at the shape's centre).
   std::string path_x, path_y, rotation_rate;
@@ -200,6 +211,11 @@ struct Config {
   long max_steps = 0;        ///< 0 = unlimited
   double steady_tol = 0.0;   ///< > 0: stop when max|u^{n+1}-u^n|/dt < steady_tol
   ViscousTime viscous_time = ViscousTime::Explicit;        ///< time.viscous
+  Splitting splitting = Splitting::Split;                  ///< time.splitting
+  /// time.rhie_chow_dt: the time tau of the Rhie-Chow term of the face velocities, which in a
+  /// steady state are <u> + tau (<G_c> - G_f); 0: the step's dt (Algorithm 1). With tau != dt
+  /// the projection corrects the faces by tau grad dp (the pressure relaxes by dt/tau per step).
+  double rhie_chow_dt = 0.0;
   SolidStressTime solid_time = SolidStressTime::Explicit;  ///< time.solid_stress
   double solid_implicit_k = 0.5;  ///< time.solid_implicit_k: k of eta = k G dt (stable for k >= 1/4)
   /// time.solid_implicit_reach: cells by which the implicit solid coefficient's blend

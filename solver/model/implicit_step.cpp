@@ -59,13 +59,66 @@ SolveStats ImplicitVelocity::solve(int comp, const Field& f, const Field& rho, c
   op.beta_x = &bx_[k];
   op.beta_y = &by_[k];
   op.sink = &c_[k];
+  if (held_ && !held_->empty()) hold_cells(comp, g.dx);
   solver_[k]->setup(op);
   // sink-API form: (1/dx^2) sum beta (d_nb - d_P) - c d_P = -f
   parallel_rows(0, ny, nx, [&](int j) {
     for (int i = 0; i < nx; ++i) rhs_(i, j) = -f(i, j);
   });
+  if (held_)
+    for (const auto& c : *held_) rhs_(c[0], c[1]) = 0.0;  // with no faces: d = 0 there
   // initial guess: the last step's change (d = 0 would be u^n itself)
   return solver_[k]->solve(rhs_, d);
+}
+
+void ImplicitVelocity::hold_cells(int comp, double dx) {
+  const std::size_t k = std::size_t(comp);
+  const int nx = cfg_.grid.nx, ny = cfg_.grid.ny;
+  Field &bx = bx_[k], &by = by_[k], &c = c_[k];
+  if (held_mark_.nx() == 0) held_mark_.resize(nx, ny, Grid::ng);
+  for (const auto& h : *held_) held_mark_(h[0], h[1]) = 1.0;
+  auto& beta = held_beta_[k];
+  beta.clear();
+  for (const auto& h : *held_) {
+    const int i = h[0], j = h[1];
+    beta.push_back({bx(i, j), bx(i + 1, j), by(i, j), by(i, j + 1)});
+  }
+  // Dirichlet d = 0 at the held cell: the flux beta (d_nb - 0) / dx^2 of each face is the
+  // neighbour's sink term beta / dx^2; the face leaves the operator. Faces on the domain's
+  // sides are left to their conditions (a held cell does not reach them in the scenes).
+  const double inv2 = 1.0 / (dx * dx);
+  for (const auto& h : *held_) {
+    const int i = h[0], j = h[1];
+    const int ni[4] = {i - 1, i + 1, i, i}, nj[4] = {j, j, j - 1, j + 1};
+    double* face[4] = {&bx(i, j), &bx(i + 1, j), &by(i, j), &by(i, j + 1)};
+    for (int f = 0; f < 4; ++f) {
+      const int a = ni[f], b = nj[f];
+      if (a < 0 || b < 0 || a >= nx || b >= ny) continue;
+      if (held_mark_(a, b) == 0.0) c(a, b) += *face[f] * inv2;
+      *face[f] = 0.0;
+    }
+  }
+  for (const auto& h : *held_) held_mark_(h[0], h[1]) = 0.0;
+}
+
+void ImplicitVelocity::held_rates(int comp, const Field& f, const Field& d, bool solved) {
+  const int nx = cfg_.grid.nx, ny = cfg_.grid.ny;
+  const double inv2 = 1.0 / (cfg_.grid.dx * cfg_.grid.dx);
+  held_rate_.resize(held_->size());
+  for (std::size_t n = 0; n < held_->size(); ++n) {
+    const int i = (*held_)[n][0], j = (*held_)[n][1];
+    double r = f(i, j);
+    if (solved) {
+      const int ni[4] = {i - 1, i + 1, i, i}, nj[4] = {j, j, j - 1, j + 1};
+      const auto& beta = held_beta_[std::size_t(comp)][n];
+      for (int q = 0; q < 4; ++q) {
+        const int a = ni[q], b = nj[q];
+        if (a < 0 || b < 0 || a >= nx || b >= ny) continue;
+        r += beta[std::size_t(q)] * inv2 * d(a, b);  // d = 0 at a held neighbour
+      }
+    }
+    held_rate_[n][std::size_t(comp)] = r;
+  }
 }
 
 void ImplicitVelocity::predict_changes(double dt) {
@@ -120,6 +173,11 @@ void ImplicitVelocity::apply(Field& u, Field& v, const Field& fx, const Field& f
   };
   const SolveStats su = solve_or_skip(0, fx, nu2, du_);
   const SolveStats sv = solve_or_skip(1, fy, nv2, dv_);
+  if (held_ && !held_->empty()) {
+    for (const auto& c : *held_) du_(c[0], c[1]) = dv_(c[0], c[1]) = 0.0;  // exactly held
+    held_rates(0, fx, du_, nu2 > lim2);
+    held_rates(1, fy, dv_, nv2 > lim2);
+  }
   iterations_ = su.iterations + sv.iterations;
   residual_ = std::max(su.rel_residual, sv.rel_residual);
   total_iterations_ += iterations_;

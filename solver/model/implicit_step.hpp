@@ -28,6 +28,7 @@
 // first order anyway, so CN would not give second order.
 #include <array>
 #include <memory>
+#include <vector>
 
 #include "core/field.hpp"
 #include "solver/model/config.hpp"
@@ -44,6 +45,15 @@ class ImplicitVelocity {
   /// rho and implicit viscosity m (cell field; ghosts filled as fill_scalar_ghosts does).
   void apply(Field& u, Field& v, const Field& fx, const Field& fy, const Field& rho,
              const Field& m, double dt);
+
+  /// Cells held fixed by the next apply() (a rigid body's forcing_hold, solver/model/rigid_body.hpp):
+  /// d = 0 there (Dirichlet: their faces leave the operator, each face's coefficient moves
+  /// to the neighbour's sink), and held_rate() then gives, per held cell and component, the
+  /// force per volume the step would have put into it, f_P + (1/dx^2) sum_f beta_f d_nb
+  /// (the momentum the hold takes out, over dt). Cell (i, j, tag): the tag is not read.
+  /// An empty list holds nothing. Not with apply_rate.
+  void set_held(const std::vector<std::array<int, 3>>* cells) { held_ = cells; }
+  const std::vector<std::array<double, 2>>& held_rate() const { return held_rate_; }
 
   /// time.solid_stress = "upper_convected" (docs/implicit.md): the same step with the solid
   /// stress increment tau = 2 mu_s dt (1 - H)(L b + b L^T), L = grad d, implicit: per
@@ -76,8 +86,19 @@ class ImplicitVelocity {
   /// free: +d) or the periodic wrap; corners included (for the tangential differences).
   void change_ghosts(Field& d, int comp) const;
 
+  /// Held cells (set_held): their faces out of the operator of component comp, their
+  /// neighbours' sinks raised; the faces' coefficients before, per cell (left, right,
+  /// bottom, top), into held_beta_[comp].
+  void hold_cells(int comp, double dx);
+  /// f_P + (1/dx^2) sum_f beta_f d_nb at the held cells into held_rate_[.][comp].
+  void held_rates(int comp, const Field& f, const Field& d, bool solved);
+
   Config cfg_;
   Sides sides_;
+  const std::vector<std::array<int, 3>>* held_ = nullptr;
+  std::array<std::vector<std::array<double, 4>>, 2> held_beta_;
+  std::vector<std::array<double, 2>> held_rate_;
+  Field held_mark_;  ///< 1 at the held cells while a component is set up
   std::array<std::array<bool, 4>, 2> fixed_{};  ///< per component, per side: Dirichlet
   // per component: face coefficients, sink and the solver (the pressure solver's method
   // and options with tol = time.implicit_tol, solver/pressure/poisson.hpp, with the sink term), set

@@ -53,6 +53,7 @@ RigidBodies::RigidBodies(const Config& cfg) : specs_(cfg.solids), t0_(cfg.t_star
   pose_.resize(n);
   load_.resize(n);
   region_change_.assign(n, {0.0, 0.0, 0.0});
+  held_.assign(n, {0.0, 0.0, 0.0});
   end_.resize(n);
   region_.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -195,6 +196,12 @@ void RigidBodies::force(const std::vector<std::unique_ptr<Solid>>& solids, Field
       if (den > 0.0) p.omega = num / den;
     }
     double dmx = 0, dmy = 0, dl = 0;  // the momentum the forcing adds
+    if (specs_[k].forcing_hold) {  // the hold took held_[k] out already (add_held)
+      dmx = -held_[k][0];
+      dmy = -held_[k][1];
+      dl = -held_[k][2];
+      held_[k] = {0.0, 0.0, 0.0};
+    }
     std::vector<std::pair<int, int>> touched;  // interpolated: the forced cells
     auto apply = [&](int gi, int gj, double tu, double tv, double c) {  // u <- u + c (target - u)
       const double r = rho(gi, gj), rx = g.xc(gi) - p.cx, ry = g.yc(gj) - p.cy;
@@ -387,6 +394,40 @@ void RigidBodies::force(const std::vector<std::unique_ptr<Solid>>& solids, Field
 }
 
 // ---------------------------------------------------------------------------- sharp forcing
+
+bool RigidBodies::holds() const {
+  for (const SolidSpec& s : specs_)
+    if (s.rigid() && s.forcing_hold) return true;
+  return false;
+}
+
+void RigidBodies::held_cells(const std::vector<std::unique_ptr<Solid>>& solids, const Grid& g,
+                             std::vector<std::array<int, 3>>& out) const {
+  out.clear();
+  for (std::size_t k = 0; k < specs_.size(); ++k) {
+    if (!specs_[k].rigid() || !specs_[k].forcing_hold) continue;
+    const Solid& s = *solids[k];
+    const int ni = s.ni(), nj = s.nj();
+    auto in = [&](int i, int j) { return i >= 0 && j >= 0 && i < ni && j < nj && s.phi()(i, j) < 0.0; };
+    for (int j = 0; j < nj; ++j)
+      for (int i = 0; i < ni; ++i) {
+        if (!(in(i, j) || in(i - 1, j) || in(i + 1, j) || in(i, j - 1) || in(i, j + 1))) continue;
+        const int gi = s.wrap().i(s.i0() + i), gj = s.wrap().j(s.j0() + j);
+        if (gi < 0 || gj < 0 || gi >= g.nx || gj >= g.ny) continue;
+        out.push_back({gi, gj, int(k)});
+      }
+  }
+}
+
+void RigidBodies::add_held(int k, int i, int j, double mx, double my, const Grid& g) {
+  const RigidPose& p = pose_[std::size_t(k)];
+  // (a "sharp" body does not cross a periodic side: grid positions are the body's)
+  const double rx = g.xc(i) - p.cx, ry = g.yc(j) - p.cy;
+  auto& h = held_[std::size_t(k)];
+  h[0] += mx;
+  h[1] += my;
+  h[2] += rx * my - ry * mx;
+}
 
 bool RigidBodies::cuts_faces() const {
   for (const SolidSpec& s : specs_)

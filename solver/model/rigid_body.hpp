@@ -146,6 +146,19 @@ class RigidBodies {
                         const Grid& g) const;
   void fill_inside_pressure(const std::vector<std::unique_ptr<Solid>>& solids, Field& p, const Grid& g) const;
 
+  /// forcing_hold (a "sharp" body): true if a body has it. held_cells lists the cells the
+  /// next forcing sets (inside, or with a 4-neighbour inside: force()'s own choice) of every
+  /// such body as (i, j, body); the flow solver keeps them at their values of the step's
+  /// start through the advection and the viscous step (so the fluid next to them never
+  /// sees a forced cell's intermediate value, which moves with dt) and books with add_held
+  /// the momentum per unit volume, sum rho du, that the hold took from body k's cells
+  /// (and its moment about the reference point); the next force() counts it as momentum
+  /// the forcing removed, and clears it.
+  bool holds() const;
+  void held_cells(const std::vector<std::unique_ptr<Solid>>& solids, const Grid& g,
+                  std::vector<std::array<int, 3>>& out) const;
+  void add_held(int k, int i, int j, double mx, double my, const Grid& g);
+
   void save_state(CheckpointWriter& w) const;
   void load_state(CheckpointReader& r);
 
@@ -169,6 +182,7 @@ class RigidBodies {
   /// interpolated forcing: the velocities the last forcing left for after the projection
   using EndVelocity = RegionState;
   std::vector<EndVelocity> end_;
+  std::vector<std::array<double, 3>> held_;  ///< add_held's sums of this step (x, y, angular)
   bool have_region_ = false;  ///< region_ holds a previous step (false before the first)
   double t0_ = 0.0;
 };

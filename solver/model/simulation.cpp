@@ -46,6 +46,12 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
   }
   if (RigidBodies::needed(cfg_)) bodies_ = std::make_unique<RigidBodies>(cfg_);
   cut_faces_ = bodies_ && bodies_->cuts_faces();
+  increment_ = cfg_.splitting == Splitting::Increment;
+  hold_ = bodies_ && bodies_->holds();
+  if (increment_)
+    for (Field* f : {&gcx_n_, &gcy_n_, &vnx_, &vny_, &srcx_, &srcy_}) f->resize(nx, ny, ng);
+  if (hold_ && cfg_.solid_time == SolidStressTime::UpperConvected)
+    throw std::invalid_argument("solid.forcing_hold is not offered with time.solid_stress = \"upper_convected\"");
   poisson_ = make_poisson_solver(cfg_.poisson);
   if (cfg_.viscous_time == ViscousTime::Implicit || cfg_.solid_time != SolidStressTime::Explicit) {
     implicit_ = std::make_unique<ImplicitVelocity>(cfg_);
@@ -466,6 +472,7 @@ double Simulation::step_state(double dt) {
   advect_momentum(dt);                   // step 4
   call_components(StepPoint::Advected, dt);
   apply_viscous_and_solid_stress(dt);
+  if (increment_) end_substeps(dt);      // time.splitting = "increment": u += dt G_c^n
   call_components(StepPoint::Stressed, dt);
   if (!solids_.empty()) setup_poisson();
   if (contact_ && contact_->force_enabled()) compute_contact_force();
@@ -507,6 +514,7 @@ void Simulation::advect_momentum(double dt) {
   const int nx = g.nx, ny = g.ny;
   const FluxScheme scheme = cfg_.advection;
   const double t = t_;
+  if (increment_ || hold_) begin_substeps(dt);
   parallel_rows(0, ny, nx, [&](int j) {
     for (int i = 0; i < nx; ++i) {
       mx_(i, j) = rho_old_(i, j) * u_(i, j);
@@ -542,6 +550,15 @@ void Simulation::advect_momentum(double dt) {
                          ky, nx, ny, g.dx);
     else
       advect_rhs2(qx.view(), qy.view(), uf_.view(), vf_.view(), kx, ky, nx, ny, g.dx, scheme);
+    if (increment_)  // the last pressure gradient and viscous force, held over the stages
+      parallel_rows(0, ny, nx, [&](int j) {
+        for (int i = 0; i < nx; ++i) {
+          kx(i, j) += srcx_(i, j);
+          ky(i, j) += srcy_(i, j);
+        }
+      });
+    // held cells: their rate is the momentum the hold takes (RK-4 weights 1, 2, 2, 1 over 6)
+    if (hold_) hold_rates(kx, ky, dt * (stage == 1 || stage == 4 ? 1.0 : 2.0) / 6.0);
   });
   // u* = (rho u)* / rho^{n+1}
   parallel_rows(0, ny, nx, [&](int j) {
@@ -561,8 +578,18 @@ void Simulation::apply_viscous_and_solid_stress(double dt) {
   if (viscous || elastic) {
     ScopedPhase ph(timers_, "viscous");
     apply_velocity_bc(u_, v_, t_ + dt);
-    if (viscous) {
+    if (viscous && increment_ && !implicit_) {
+      fx_.fill(0.0);  // time.splitting = "increment": the advection carried it (of u^n)
+      fy_.fill(0.0);
+    } else if (viscous) {
       viscous_force(u_.view(), v_.view(), mu_.view(), fx_.view(), fy_.view(), nx, ny, g.dx);
+      if (increment_)  // only the change of the viscous force since u^n (the advection carried that)
+        parallel_rows(0, ny, nx, [&](int j) {
+          for (int i = 0; i < nx; ++i) {
+            fx_(i, j) -= vnx_(i, j);
+            fy_(i, j) -= vny_(i, j);
+          }
+        });
     } else {
       fx_.fill(0.0);
       fy_.fill(0.0);
@@ -579,10 +606,69 @@ void Simulation::apply_viscous_and_solid_stress(double dt) {
       rate_coefficients(dt);
       implicit_->apply_rate(u_, v_, fx_, fy_, rho_, mimp_, qxx_, qxy_, qyy_, dt);
     } else {
+      implicit_->set_held(hold_ ? &held_ : nullptr);
       implicit_->apply(u_, v_, fx_, fy_, rho_, mimp_, dt);
+      if (hold_) {
+        const auto& r = implicit_->held_rate();
+        for (std::size_t n = 0; n < held_.size(); ++n)
+          bodies_->add_held(held_[n][2], held_[n][0], held_[n][1], dt * r[n][0], dt * r[n][1], g);
+      }
     }
   } else if (viscous || elastic) {
+    if (hold_) hold_rates(fx_.view(), fy_.view(), dt);
     apply_force(u_.view(), v_.view(), fx_.view(), fy_.view(), rho_.view(), dt, nx, ny);
+  }
+}
+
+void Simulation::begin_substeps(double dt) {
+  const Grid& g = cfg_.grid;
+  const int nx = g.nx, ny = g.ny;
+  if (hold_) bodies_->held_cells(solids_, g, held_);
+  if (!increment_) return;
+  // G_f^n: the face accelerations of p^n (pressure, gravity, contact), as eq. (5.7) applied
+  // them at the end of the last step; the cell average as correct_cell_velocity takes it
+  fill_scalar_ghosts(p_, cfg_.bc);
+  face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), nx, ny, g.dx, cfg_.gx,
+             cfg_.gy, cfg_.rho_f, sides_);
+  add_contact_face_accel();
+  if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);
+  bool viscous = cfg_.mu_f > 0.0;
+  for (const auto& s : solids_) viscous = viscous || s->spec().viscosity > 0.0;
+  if (viscous) {
+    apply_velocity_bc(u_, v_, t_);
+    viscous_force(u_.view(), v_.view(), mu_.view(), vnx_.view(), vny_.view(), nx, ny, g.dx);
+  } else {
+    vnx_.fill(0.0);
+    vny_.fill(0.0);
+  }
+  parallel_rows(0, ny, nx, [&](int j) {
+    for (int i = 0; i < nx; ++i) {
+      gcx_n_(i, j) = 0.5 * (gxf_(i, j) + gxf_(i + 1, j));
+      gcy_n_(i, j) = 0.5 * (gyf_(i, j) + gyf_(i, j + 1));
+      srcx_(i, j) = vnx_(i, j) - rho_old_(i, j) * gcx_n_(i, j);
+      srcy_(i, j) = vny_(i, j) - rho_old_(i, j) * gcy_n_(i, j);
+    }
+  });
+}
+
+void Simulation::end_substeps(double dt) {
+  const Grid& g = cfg_.grid;
+  parallel_rows(0, g.ny, g.nx, [&](int j) {
+    for (int i = 0; i < g.nx; ++i) {
+      u_(i, j) += dt * gcx_n_(i, j);
+      v_(i, j) += dt * gcy_n_(i, j);
+    }
+  });
+}
+
+void Simulation::hold_rates(View kx, View ky, double weight) {
+  // serial: a body's few hundred cells, and the sums must have the same bits for any threads
+  const Grid& g = cfg_.grid;
+  for (const auto& c : held_) {
+    const int i = c[0], j = c[1];
+    bodies_->add_held(c[2], i, j, weight * kx(i, j), weight * ky(i, j), g);
+    kx(i, j) = 0.0;
+    ky(i, j) = 0.0;
   }
 }
 
@@ -666,10 +752,28 @@ void Simulation::predict_face_velocities(double dt) {
   // (G_f from face_accelerations)
   predict_face_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), uf_.view(), vf_.view(),
                         g.nx, g.ny, dt, sides_);
+  const double tau = projection_time(dt);
+  if (tau != dt) {
+    // time.rhie_chow_dt: u_f* += (dt - tau) (G_f - <G_c>_f) on the interior faces, so that
+    // after the projection by tau grad dp a steady state's faces carry <u> + tau (<G_c> - G_f)
+    const double c = dt - tau;
+    parallel_rows(0, g.ny, g.nx, [&](int j) {
+      for (int i = 1; i < g.nx; ++i)
+        uf_(i, j) += c * (0.5 * gxf_(i, j) - 0.25 * (gxf_(i - 1, j) + gxf_(i + 1, j)));
+    });
+    parallel_rows(1, g.ny, g.nx, [&](int j) {
+      for (int i = 0; i < g.nx; ++i)
+        vf_(i, j) += c * (0.5 * gyf_(i, j) - 0.25 * (gyf_(i, j - 1) + gyf_(i, j + 1)));
+    });
+  }
   // forcing = "sharp": the cut faces carry the body's velocity (beta = 0 there: the
   // projection keeps it, whatever dt)
   if (cut_faces_) bodies_->impose_cut_faces(solids_, uf_, vf_, g);
-  face_divergence(uf_.view(), vf_.view(), rhs_.view(), g.nx, g.ny, g.dx, 1.0 / dt);
+  face_divergence(uf_.view(), vf_.view(), rhs_.view(), g.nx, g.ny, g.dx, 1.0 / tau);
+}
+
+double Simulation::projection_time(double dt) const {
+  return cfg_.rhie_chow_dt > 0.0 ? cfg_.rhie_chow_dt : dt;
 }
 
 void Simulation::solve_pressure() {
@@ -690,7 +794,7 @@ void Simulation::project(double dt) {
   fill_scalar_ghosts(p_, cfg_.bc);
   // step 8, eq. (5.6): exactly divergence-free face velocities
   correct_face_velocity(uf_.view(), vf_.view(), dp_.view(), beta_x_.view(), beta_y_.view(),
-                        g.nx, g.ny, g.dx, dt, sides_);
+                        g.nx, g.ny, g.dx, projection_time(dt), sides_);
   // step 9, eq. (5.7): cell velocities with the new pressure
   face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
              g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, sides_);

@@ -1,6 +1,7 @@
 #pragma once
 // One time step over the state: Algorithm 1 of Jain & Mani (fluid steps 4-9 here; solids
 // add steps 1-3). The run loop, output and diagnostics are in solver/app/run.hpp.
+#include <array>
 #include <functional>
 #include <memory>
 #include <utility>
@@ -177,6 +178,18 @@ class Simulation {
   void force_bodies(double dt);
   /// "contact": the gap and event tracker after the step.
   void observe_contact();
+  /// time.splitting = "increment" and held cells ([[solid]] forcing_hold), before the
+  /// advection: the cell average G_c^n of the face accelerations of the step's start, the
+  /// viscous force of u^n, the advection's momentum source and the list of held cells.
+  void begin_substeps(double dt);
+  /// time.splitting = "increment", after the viscous step: u += dt G_c^n, so the forcing,
+  /// the predictor and the projection see the velocity of Algorithm 1's convention.
+  void end_substeps(double dt);
+  /// Held cells: books dt (the rate of (kx, ky) at the held cells) times `weight` as the
+  /// momentum the hold takes from their body, then zeroes the rate there.
+  void hold_rates(View kx, View ky, double weight);
+  /// The time the projection corrects the face velocities with: time.rhie_chow_dt, or dt.
+  double projection_time(double dt) const;
 
   /// Algorithm 1 steps 1-2 for every solid (timed as "xi advection", "extrapolation",
   /// "level set").
@@ -222,6 +235,12 @@ class Simulation {
   std::unique_ptr<Contact> contact_;
   std::unique_ptr<RigidBodies> bodies_;    // null unless a solid is rigid
   bool cut_faces_ = false;                 // a rigid body with forcing = "sharp" (bodies_->cuts_faces())
+  bool increment_ = false;                 // time.splitting = "increment"
+  bool hold_ = false;                      // a rigid body with forcing_hold (bodies_->holds())
+  Field gcx_n_, gcy_n_;                    // increment: G_c^n, the cell average of the face accelerations
+  Field vnx_, vny_;                        // increment: viscous force of u^n
+  Field srcx_, srcy_;                      // increment: the advection's momentum source vn - rho_old G_c^n
+  std::vector<std::array<int, 3>> held_;   // the held cells of this step: i, j, body
   Field cfx_, cfy_;                        // contact force density of the last step
   bool contact_force_written_ = true;      // cfx_/cfy_ may be nonzero (compute_contact_force)
   std::unique_ptr<PoissonSolver> poisson_;

@@ -92,6 +92,11 @@ std::span<const OptionName<ViscousTime>> option_names(ViscousTime) {
   return span_of(n);
 }
 
+std::span<const OptionName<Splitting>> option_names(Splitting) {
+  static const OptionName<Splitting> n[] = {{Splitting::Split, "split"}, {Splitting::Increment, "increment"}};
+  return span_of(n);
+}
+
 std::span<const OptionName<SolidStressTime>> option_names(SolidStressTime) {
   static const OptionName<SolidStressTime> n[] = {{SolidStressTime::Explicit, "explicit"},
                                                   {SolidStressTime::SemiImplicit, "semi_implicit"},

@@ -30,6 +30,7 @@ std::span<const OptionName<SolidStressTime>> option_names(SolidStressTime);
 std::span<const OptionName<JumpFlux>> option_names(JumpFlux);
 std::span<const OptionName<XiFlux>> option_names(XiFlux);
 std::span<const OptionName<XiVelocity>> option_names(XiVelocity);
+std::span<const OptionName<Splitting>> option_names(Splitting);
 
 // Declared next to their enums, with the names: the pressure solver's options
 // (solver/pressure/poisson.hpp), the shapes (solver/model/shape_params.hpp), the body-force estimator

@@ -235,6 +235,8 @@ void parse_time(const Ctx& ctx, const Table& top, Config& cfg) {
   cfg.max_steps = t.integer("max_steps");
   cfg.steady_tol = t.number("steady_tol");
   cfg.viscous_time = t.option<ViscousTime>("viscous");
+  cfg.splitting = t.option<Splitting>("splitting");
+  cfg.rhie_chow_dt = t.number("rhie_chow_dt");
   cfg.solid_time = t.option<SolidStressTime>("solid_stress");
   cfg.solid_implicit_k = t.number("solid_implicit_k");
   cfg.solid_implicit_reach = t.number("solid_implicit_reach");
@@ -486,6 +488,9 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
       s.fail(*k, "only used with motion = \"" + s.entry(*k).only.front() + "\" (motion is \"" + motion + "\")");
     const bool rigid = sp.rigid();
     if (rigid) sp.forcing = s.option<BodyForcing>("forcing");
+    if (rigid) sp.forcing_hold = s.boolean("forcing_hold");
+    if (sp.forcing_hold && sp.forcing != BodyForcing::Sharp)
+      s.fail("forcing_hold", "only with forcing = \"sharp\" (forcing is \"" + std::string(to_string(sp.forcing)) + "\")");
     // "sharp" cuts the inside cells out of the pressure solve: the pressure acts on the body
     // through its cut faces only, which a pinned body's rotation rate (the angular momentum
     // of the inside cells) does not see

@@ -123,6 +123,17 @@ std::vector<KeyDef> build_keys() {
                           "`\"explicit\"`: forward Euler (eq. 5.2; dt <= viscous_safety rho dx^2 / (6 mu)); "
                           "`\"implicit\"`: backward Euler in the compact part, solved by the pressure solver's "
                           "method with a sink term; no viscous time-step limit (docs/implicit.md)"),
+      num("time", "rhie_chow_dt", d.rhie_chow_dt, ge(0, "0 = dt"),
+          "the time tau of the Rhie-Chow term of the face velocities (eq. 5.3): a steady state's face "
+          "velocities are <u> + tau (<G_c> - G_f), so a fixed tau keeps it from moving with dt; the "
+          "projection then corrects the faces by tau grad dp and the pressure relaxes by dt / tau per step "
+          "(tau <= 4 dt advised; 0: tau = dt, Algorithm 1; docs/method.md)"),
+      choice<Splitting>("time", "splitting", d.splitting,
+                        "`\"split\"`: Algorithm 1 (the advection and the viscous step act without the pressure "
+                        "gradient, the projection applies it whole: a steady state moves with dt); `\"increment\"`: "
+                        "the advection carries the last pressure gradient and viscous force as sources, the "
+                        "viscous step only their change, so a steady state does not depend on dt "
+                        "(docs/method.md, \"Splitting\")"),
       choice<SolidStressTime>("time", "solid_stress", d.solid_time,
                               "`\"explicit\"`: dt <= solid_cfl dx sqrt(rho_s / G); `\"semi_implicit\"`: an "
                               "implicit isotropic term eta = k G dt (1 - H) added and its explicit counterpart "
@@ -317,6 +328,11 @@ std::vector<KeyDef> build_keys() {
                                "value interpolated along the normal between the surface and an image point; `\"sharp\"` is "
                                "`\"interpolated\"` with the cells inside cut out of the pressure solve (their faces "
                                "carry the body's velocity, not corrected by the projection); not for a pinned body"),
+           "motion", {"fixed", "prescribed", "pinned"}),
+      only(boolean("solid", "forcing_hold", ds.forcing_hold,
+                   "`forcing = \"sharp\"` only: hold the cells the forcing sets (inside and next to the surface) "
+                   "at their values of the step's start through the advection and the viscous step, the momentum "
+                   "they would have taken counted in the force (docs/bodies.md)"),
            "motion", {"fixed", "prescribed", "pinned"}),
       only(shown_default(key("solid", "path_x", KT::Expression, {}, {},
                              "x of the centre as an expression of t; must equal `center` at the start time"),
