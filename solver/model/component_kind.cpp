@@ -5,25 +5,26 @@
 
 namespace refmap {
 
-// Each kind is defined in its component's own .cpp.
-ComponentKind actuation_kind();
-ComponentKind tracers_kind();
-ComponentKind markers_kind();
-ComponentKind wall_stress_kind();
-ComponentKind control_volume_forces_kind();
-ComponentKind dye_kind();
+// The registered kinds, ONE LINE EACH: a new component adds X(name) here and defines
+// `ComponentKind name_kind()` in its own .cpp. The order is that of their hooks at one step
+// point: actuation first (the stress of a step needs A(t + dt)), then the tracers (the
+// velocity of the step's start), the markers.
+#define REFMAP_COMPONENT_KINDS(X) \
+  X(actuation)                    \
+  X(tracers)                      \
+  X(markers)                      \
+  X(wall_stress)                  \
+  X(control_volume_forces)        \
+  X(dye)
+
+#define REFMAP_DECLARE_KIND(name) ComponentKind name##_kind();
+REFMAP_COMPONENT_KINDS(REFMAP_DECLARE_KIND)
+#undef REFMAP_DECLARE_KIND
 
 const std::vector<ComponentKind>& component_kinds() {
-  // The order of the hooks at one step point: actuation first (the stress of a step needs
-  // A(t + dt)), then the tracers (the velocity of the step's start), the markers.
-  static const std::vector<ComponentKind> kinds = {
-      actuation_kind(),
-      tracers_kind(),
-      markers_kind(),
-      wall_stress_kind(),
-      control_volume_forces_kind(),
-      dye_kind(),
-  };
+#define REFMAP_CALL_KIND(name) name##_kind(),
+  static const std::vector<ComponentKind> kinds = {REFMAP_COMPONENT_KINDS(REFMAP_CALL_KIND)};
+#undef REFMAP_CALL_KIND
   return kinds;
 }
 
