@@ -1,18 +1,23 @@
 #include "solver/app/thread_governor.hpp"
 
 #include <omp.h>
+#include <sched.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 namespace refmap {
 
 int governed_threads(int current, int max_threads, int ncpu, double others_cores) {
   const double free_cores = double(ncpu) - std::max(0.0, others_cores);
-  const auto fit = [&](double slack) { return std::clamp(int(std::floor(free_cores + slack)), 1, std::max(1, max_threads)); };
+  const auto fit = [&](double slack) {
+    return std::clamp(int(std::floor(free_cores + slack)), 1, std::max(1, max_threads));
+  };
   if (const int n = fit(kShrinkSlack); n < current) return n;
   if (const int n = fit(kGrowSlack); n > current) return n;
   return current;
@@ -31,20 +36,35 @@ ThreadGovernor::ThreadGovernor(int max_threads, bool enabled, double interval_s,
 }
 
 bool ThreadGovernor::sample(double& machine_busy_s, double& own_s) const {
-  // /proc/stat's first line: jiffies of all CPUs in user, nice, system, idle, iowait, irq,
-  // softirq, steal; busy = all but idle and iowait
+  // /proc/stat's per-CPU lines "cpuN user nice system idle iowait irq softirq steal ...", in
+  // jiffies; busy = all but idle, iowait and steal (steal is other machines' work). Only the
+  // CPUs this process may run on count (a run pinned by taskset or a batch system is not
+  // slowed by work on the machine's other CPUs).
+  cpu_set_t mask;
+  CPU_ZERO(&mask);
+  const bool have_mask = sched_getaffinity(0, sizeof mask, &mask) == 0;
   std::FILE* f = std::fopen("/proc/stat", "r");
   if (!f) return false;
-  unsigned long long v[8] = {};
-  const int n = std::fscanf(f, "cpu %llu %llu %llu %llu %llu %llu %llu %llu", &v[0], &v[1], &v[2], &v[3], &v[4],
-                            &v[5], &v[6], &v[7]);
-  std::fclose(f);
-  if (n < 5) return false;
-  const double tick = double(sysconf(_SC_CLK_TCK));
+  char line[512];
   unsigned long long busy = 0;
-  for (int k = 0; k < std::min(n, 7); ++k)  // steal time (k = 7) is other machines' work
-    if (k != 3 && k != 4) busy += v[k];
-  machine_busy_s = double(busy) / tick;
+  int cpus = 0;
+  while (std::fgets(line, sizeof line, f)) {
+    // per-CPU lines only: "cpu" then the CPU's number (the summary line has a space there,
+    // which %d would skip)
+    if (std::strncmp(line, "cpu", 3) != 0 || !std::isdigit(static_cast<unsigned char>(line[3]))) continue;
+    int cpu = -1;
+    unsigned long long v[7] = {};
+    if (std::sscanf(line, "cpu%d %llu %llu %llu %llu %llu %llu %llu", &cpu, &v[0], &v[1], &v[2], &v[3], &v[4], &v[5],
+                    &v[6]) < 5 ||
+        cpu < 0)
+      continue;
+    if (have_mask && (cpu >= CPU_SETSIZE || !CPU_ISSET(cpu, &mask))) continue;
+    busy += v[0] + v[1] + v[2] + v[5] + v[6];
+    ++cpus;
+  }
+  std::fclose(f);
+  if (cpus == 0) return false;
+  machine_busy_s = double(busy) / double(sysconf(_SC_CLK_TCK));
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
   own_s = double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) + 1e-6 * double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);

@@ -8,8 +8,8 @@
 // waits for a descheduled thread at every barrier and the same run takes 5-12x longer.
 // No wait policy serves both, and the neighbour may start or stop during a long run. So
 // refmap keeps libgomp's bounded spinning and changes the team size instead: every
-// sampling interval it reads the CPU time the whole machine spent (/proc/stat) and its
-// own (getrusage); the difference is what other processes used, in cores. With fewer
+// sampling interval it reads the CPU time spent on the CPUs it may run on (/proc/stat,
+// the affinity mask) and its own (getrusage); the difference is what other processes used, in cores. With fewer
 // cores left than threads, the run drops to the cores left (one thread beside one busy
 // process runs as fast as alone); when they come back, it returns to the requested
 // team. Team size never changes the results: every reduction of kernels/loop.hpp sums
