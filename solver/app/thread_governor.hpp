@@ -2,18 +2,18 @@
 // How many threads the run uses, decided while it runs from what the machine's other
 // processes use (results/threads.md, "Two threads that help every scene").
 //
-// On the 2-core machines refmap runs on, spinning waits at OpenMP barriers make one disc
-// at 256^2 about 1.3x faster on 2 threads than on 1 on an idle machine, where sleeping
-// (passive) waits make it slower (0.94x); but beside one busy process a spinning partner
-// waits for a descheduled thread at every barrier and the same run takes 5-12x longer.
-// No wait policy serves both, and the neighbour may start or stop during a long run. So
-// refmap keeps libgomp's bounded spinning and changes the team size instead: every
-// sampling interval it reads the CPU time spent on the CPUs it may run on (/proc/stat,
-// the affinity mask) and its own (getrusage); the difference is what other processes used, in cores. With fewer
-// cores left than threads, the run drops to the cores left (one thread beside one busy
-// process runs as fast as alone); when they come back, it returns to the requested
-// team. Team size never changes the results: every reduction of kernels/loop.hpp sums
-// per-row partials in row order.
+// On the 2-core machines refmap runs on, spinning waits at OpenMP barriers are what make a
+// second thread pay off for one disc on an idle machine, where sleeping (passive) waits
+// make it slower; but beside one busy process a spinning partner waits for a descheduled
+// thread at every barrier and the run takes several times longer (measured:
+// results/threads.md). No wait policy serves both, and the neighbour may start or stop
+// during a long run. So refmap keeps libgomp's bounded spinning and changes the team size
+// instead: every sampling interval it reads the CPU time spent on the CPUs it may run on
+// (/proc/stat, the affinity mask) and its own (getrusage); the difference is what other
+// processes used, in cores. With fewer cores left than threads, the run drops to the
+// cores left (one thread beside one busy process runs as fast as alone); when they come
+// back, it returns to the requested team. Team size never changes the results: every
+// reduction of kernels/loop.hpp sums per-row partials in row order.
 #include <chrono>
 
 namespace refmap {
