@@ -14,6 +14,7 @@
 #include "solver/scene/scene.hpp"
 #include "solver/model/simulation.hpp"
 #include "tests/fixtures/scene_text.hpp"
+#include "test_helpers.hpp"
 
 namespace refmap {
 namespace {
@@ -88,14 +89,7 @@ TEST(Dye, BoundedAndConservedInACellularFlow) {
 }
 
 TEST(Dye, BadValuesAreSceneErrors) {
-  auto error_of = [](const std::string& extra) {
-    try {
-      load_scene_string(box_scene(16, kWalls, extra), "bad.toml");
-    } catch (const SceneError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
+  auto error_of = [](const std::string& extra) { return refmap::testing::scene_error(box_scene(16, kWalls, extra)); };
   EXPECT_NE(error_of("[dye]\n").find("dye.initial: missing required key"), std::string::npos);
   EXPECT_NE(error_of("[dye]\ninitial = \"1 +\"\n").find("dye.initial: invalid expression"), std::string::npos);
   EXPECT_NE(error_of("[dye]\ninitial = \"1/(x - x)\"\n").find("dye.initial: evaluates to"), std::string::npos);

@@ -1,10 +1,13 @@
 #pragma once
-// Small helpers shared by the physics tests: reading reference CSVs, scene paths.
+// Small helpers shared by the tests: reading reference CSVs, scene paths, scene errors.
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "solver/io/input_error.hpp"
+#include "solver/scene/scene.hpp"
 
 namespace refmap::testing {
 
@@ -13,6 +16,16 @@ inline std::string scene_path(const std::string& name) {
 }
 inline std::string data_path(const std::string& name) {
   return std::string(REFMAP_DATA_DIR) + "/" + name;
+}
+
+/// The message of the SceneError that loading the scene `text` throws ("" if it loads).
+inline std::string scene_error(const std::string& text) {
+  try {
+    load_scene_string(text, "bad.toml", {});
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 /// A CSV with one header line: columns by name.

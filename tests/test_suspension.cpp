@@ -18,6 +18,7 @@
 #include "solver/scene/scene.hpp"
 #include "solver/model/simulation.hpp"
 #include "solver/scene/suspension.hpp"
+#include "test_helpers.hpp"
 
 namespace refmap {
 namespace {
@@ -39,14 +40,7 @@ std::string suspension(const std::string& keys, double radius = 0.1) {
                                  "\nmu_s = 50.0\ndensity = 1.0\nviscosity = 1.0\n" + keys);
 }
 
-std::string error_of(const std::string& text) {
-  try {
-    load_scene_string(text, "suspension.toml", {});
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
+using refmap::testing::scene_error;
 
 double solid_area(const SolidSpec& s) {
   return s.shape.kind == ShapeKind::Circle ? M_PI * s.shape.radius * s.shape.radius : M_PI * s.shape.a * s.shape.b;
@@ -161,23 +155,23 @@ TEST(Placement, EllipsesDoNotOverlap) {
 }
 
 TEST(Placement, UnreachableFractionIsAnErrorNamingTheFractionReached) {
-  const std::string msg = error_of(suspension("area_fraction = 0.7\nattempts = 2000\n"));
+  const std::string msg = scene_error(suspension("area_fraction = 0.7\nattempts = 2000\n"));
   EXPECT_NE(msg.find("suspension.area_fraction"), std::string::npos) << msg;
   EXPECT_NE(msg.find("reached area fraction"), std::string::npos) << msg;
   // above the densest packing: the key's range
-  EXPECT_NE(error_of(suspension("area_fraction = 0.95\n")).find("suspension.area_fraction"), std::string::npos);
+  EXPECT_NE(scene_error(suspension("area_fraction = 0.95\n")).find("suspension.area_fraction"), std::string::npos);
   // count and fraction together, or neither
-  EXPECT_NE(error_of(suspension("area_fraction = 0.2\ncount = 3\n")).find("give exactly one"), std::string::npos);
-  EXPECT_NE(error_of(suspension("")).find("give exactly one"), std::string::npos);
+  EXPECT_NE(scene_error(suspension("area_fraction = 0.2\ncount = 3\n")).find("give exactly one"), std::string::npos);
+  EXPECT_NE(scene_error(suspension("")).find("give exactly one"), std::string::npos);
   // a particle wider than the gap between the walls
-  EXPECT_NE(error_of(suspension("count = 1\n", 0.6)).find("suspension.count"), std::string::npos);
+  EXPECT_NE(scene_error(suspension("count = 1\n", 0.6)).find("suspension.count"), std::string::npos);
 }
 
 TEST(Placement, ExplicitSolidOverlappingAParticleIsRefused) {
   // the particles are ordinary solids: the start check refuses an overlap with another solid
   const Config c = load_scene_string(suspension("count = 1\nseed = 1\n"), "one.toml");
   const ShapeParams& p = c.solids.at(0).shape;
-  const std::string msg = error_of(suspension("count = 1\nseed = 1\n") +
+  const std::string msg = scene_error(suspension("count = 1\nseed = 1\n") +
                                    "[[solid]]\nname = \"wall_disc\"\nshape = \"circle\"\ncenter = [" +
                                    std::to_string(p.cx) + ", " + std::to_string(p.cy) +
                                    "]\nradius = 0.05\nmu_s = 1.0\ndensity = 1.0\n");

@@ -19,6 +19,7 @@
 #include "solver/model/simulation.hpp"
 #include "solver/components/tracers.hpp"
 #include "tests/fixtures/scene_text.hpp"
+#include "test_helpers.hpp"
 
 using namespace refmap;
 using namespace refmap::testing;
@@ -167,14 +168,7 @@ TEST(Tracers, RestoredStateContinuesBitForBit) {
 }
 
 TEST(Tracers, BadValuesAreSceneErrors) {
-  auto error_of = [](const std::string& extra) {
-    try {
-      load_scene_string(box_scene(16, kWalls, extra), "bad.toml");
-    } catch (const SceneError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
+  auto error_of = [](const std::string& extra) { return refmap::testing::scene_error(box_scene(16, kWalls, extra)); };
   EXPECT_NE(error_of("[[tracers]]\nline = [[0.1, 0.1], [1.5, 0.1]]\nn = 3\n").find("outside the domain"), std::string::npos);
   EXPECT_NE(error_of("[[tracers]]\nline = [[0.1, 0.1]]\nn = 3\n").find("expected two points"), std::string::npos);
   EXPECT_NE(error_of("[[tracers]]\nline = [[0.1, 0.1], [0.2, 0.2]]\nbox = [[0.1, 0.1], [0.2, 0.2]]\nn = 3\n").find("not both"),
