@@ -15,7 +15,7 @@ iteration's relative velocity change (picard_change: median and largest over the
 passes per step, multigrid cycles per step of all passes (pressure and velocity) and the
 same over the reference run's pressure cycles per step ("cost": pressure-solve units).
 
-    python3 bench/picard_study.py            # the PLAN below (~8 min on a 2-core machine at load 10)
+    python3 bench/picard_study.py            # the PLAN below (~15 min on a 2-core machine at load 10)
     python3 bench/picard_study.py [--bin build/refmap] [--grid 64] [--methods a,b --mus 100,1e4 --ps 2,4,8]
 """
 import argparse
@@ -56,7 +56,9 @@ METHODS = {
     "picard_defect_th0.5_n2_r2": picard(2, 0.5) + ["time.solid_implicit_reach=2"],
 }
 PLAN = [(["semi_k0.5", "picard_defect_th0.5_n2"], "100,1e4", "2,4,8"),
-        (["picard_plain_th0.5_n2", "picard_defect_th1_n2"], "100,1e4", "8")]
+        (["picard_plain_th0.5_n2", "picard_defect_th1_n2"], "100,1e4", "8"),
+        (["picard_defect_th0.5_n4", "picard_defect_th0.5_n2_r2"], "100,1e4", "4,8"),
+        (["picard_defect_th0.5_n2_r2"], "1e5,100", "8,16")]
 
 
 def run(binary, raw, tag, sets):
