@@ -112,6 +112,13 @@ CheckpointReader::CheckpointReader(const std::string& path) : path_(path) {
   if (fnv1a64(payload_.data(), payload_.size()) != sum) fail("corrupted (checksum mismatch)");
 }
 
+CheckpointReader CheckpointReader::from_payload(const std::vector<unsigned char>& payload, const std::string& name) {
+  CheckpointReader r;
+  r.path_ = name;
+  r.payload_ = payload;
+  return r;
+}
+
 void CheckpointReader::fail(const std::string& what) const {
   throw CheckpointError("checkpoint " + path_ + ": " + what);
 }

@@ -37,6 +37,8 @@ class CheckpointWriter {
 
   /// Writes the file atomically (PATH.tmp, fsync, rename). Throws std::runtime_error.
   void save(const std::string& path) const;
+  /// The records written so far (an in-memory snapshot: CheckpointReader::from_payload).
+  const std::vector<unsigned char>& payload() const { return payload_; }
 
  private:
   std::vector<unsigned char> payload_;
@@ -46,6 +48,9 @@ class CheckpointReader {
  public:
   /// Reads and verifies the whole file; throws CheckpointError.
   explicit CheckpointReader(const std::string& path);
+  /// Reads the records of an in-memory snapshot (CheckpointWriter::payload; no header, no
+  /// checksum: it never left the process). `name` stands for the path in error messages.
+  static CheckpointReader from_payload(const std::vector<unsigned char>& payload, const std::string& name);
 
   std::vector<unsigned char> get_bytes(const std::string& tag);
   double get_f64(const std::string& tag);
@@ -58,6 +63,7 @@ class CheckpointReader {
   const std::string& path() const { return path_; }
 
  private:
+  CheckpointReader() = default;
   [[noreturn]] void fail(const std::string& what) const;
   std::string path_;
   std::vector<unsigned char> payload_;

@@ -224,6 +224,14 @@ struct Config {
   /// time.solid_implicit_cfl: P of dt <= P dx sqrt(rho_s / G) for the implicit solid stress
   /// (0: no solid limit; with the reach a disc in a fluid stays bounded to P ~ 8)
   double solid_implicit_cfl = 0.0;
+  /// time.solid_picard_iterations: fixed-point iterations of the whole step with xi advanced by
+  /// the latest end-of-step velocity (0: Algorithm 1's step, xi moved by u^n; docs/implicit.md,
+  /// "The implicit step in xi")
+  int solid_picard = 0;
+  double solid_picard_theta = 0.5;  ///< time.solid_picard_theta: xi moves with (1 - theta) u^n + theta u^{n+1}
+  /// time.solid_picard_defect: the iterations correct the last one's velocity change through
+  /// the stabilising operator (its term vanishes at convergence) instead of repeating the step
+  bool solid_picard_defect = true;
   int solid_rate_sweeps = 1;  ///< time.solid_rate_sweeps: outer block Gauss-Seidel sweeps of the upper-convected step (1: cross terms lagged)
   /// time.implicit_tol: relative residual of the implicit velocity solve (the velocity
   /// change d over a step; solver/model/implicit_step.hpp); looser than the pressure's solver.tol

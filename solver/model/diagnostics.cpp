@@ -86,6 +86,13 @@ const Column kImplicitColumns[] = {
     {"implicit_iterations", false, [](const RowState& r) { return double(r.sim.implicit_velocity()->last_iterations()); }},
 };
 
+/// Written after those, only with time.solid_picard_iterations > 0 (solver/model/solid_picard.cpp):
+/// the last iteration's relative velocity change and the multigrid cycles of all the step's passes.
+const Column kPicardColumns[] = {
+    {"picard_change", false, [](const RowState& r) { return r.sim.picard_change(); }},
+    {"picard_cycles", false, [](const RowState& r) { return double(r.sim.picard_cycles()); }},
+};
+
 bool is_body(const Simulation& sim, int k) { return sim.bodies() && sim.bodies()->rigid(k); }
 bool has_force(const Simulation& sim, int k) {
   return sim.control_volume_forces() ? sim.control_volume_forces()->has_load(k) : is_body(sim, k);
@@ -112,6 +119,8 @@ std::vector<std::string> diagnostic_columns(const Simulation& sim) {
     if (!col.needs_solids || nsolids > 0) c.push_back(col.name);
   if (sim.implicit_velocity())
     for (const Column& col : kImplicitColumns) c.push_back(col.name);
+  if (sim.config().solid_picard > 0)
+    for (const Column& col : kPicardColumns) c.push_back(col.name);
   for (const auto& comp : sim.components())  // solver/model/component.hpp, in the order added
     for (const std::string& name : comp->columns()) c.push_back(name);
   return c;
@@ -125,6 +134,8 @@ std::vector<double> diagnostic_values(const Simulation& sim, double last_dt, dou
     if (!col.needs_solids || nsolids > 0) v.push_back(col.value(r));
   if (sim.implicit_velocity())
     for (const Column& col : kImplicitColumns) v.push_back(col.value(r));
+  if (sim.config().solid_picard > 0)
+    for (const Column& col : kPicardColumns) v.push_back(col.value(r));
   for (const auto& comp : sim.components()) comp->values(sim, v);
   return v;
 }

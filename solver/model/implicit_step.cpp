@@ -295,6 +295,28 @@ void ImplicitVelocity::apply_rate(Field& u, Field& v, const Field& fx, const Fie
   });
 }
 
+void ImplicitVelocity::compact_operator(const Field& m, const Field& du, const Field& dv, Field& ou, Field& ov) {
+  const Grid& g = cfg_.grid;
+  const int nx = g.nx, ny = g.ny, ng = Grid::ng;
+  if (opc_.nx() == 0) {
+    opx_.resize(nx + 1, ny, ng);
+    opy_.resize(nx, ny + 1, ng);
+    for (Field* f : {&opc_, &zero_, &dtmp_}) f->resize(nx, ny, ng);
+    zero_.fill(0.0);
+  }
+  for (int comp = 0; comp < 2; ++comp) {
+    const double ax = comp == 0 ? 2.0 : 1.0, ay = comp == 0 ? 1.0 : 2.0;
+    // the faces and the Dirichlet wall terms of solve(); rho = 0 leaves the sink rho/dt out
+    helmholtz_faces(m.cview(), opx_.view(), opy_.view(), nx, ny, ax, ay, sides_);
+    helmholtz_sink(zero_.cview(), m.cview(), opc_.view(), nx, ny, g.dx, 1.0, ax, ay, sides_,
+                   fixed_[std::size_t(comp)]);
+    dtmp_ = comp == 0 ? du : dv;
+    helmholtz_ghosts(dtmp_.view(), nx, ny, sides_);
+    helmholtz_apply(dtmp_.cview(), opx_.cview(), opy_.cview(), opc_.cview(), (comp == 0 ? ou : ov).view(), nx,
+                    ny, g.dx);
+  }
+}
+
 void ImplicitVelocity::register_state(StateRegistry& reg) {
   reg.add_field("implicit.du", du_);
   reg.add_field("implicit.dv", dv_);

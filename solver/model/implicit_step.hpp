@@ -68,6 +68,13 @@ class ImplicitVelocity {
   /// max |d change in the last outer sweep| / max |d| of the last apply_rate (0 with one sweep).
   double last_sweep_change() const { return sweep_change_; }
 
+  /// The velocity change of component comp (0: u, 1: v) of the last apply().
+  const Field& last_change(int comp) const { return comp == 0 ? du_ : dv_; }
+  /// (ou, ov) = A(m) (du, dv): the compact operator of apply() without its rho/dt sink,
+  /// with the same homogeneous wall conditions (time.solid_picard_defect moves A(eta) of the
+  /// last iterate's change to the right-hand side; docs/implicit.md). m needs one ghost layer.
+  void compact_operator(const Field& m, const Field& du, const Field& dv, Field& ou, Field& ov);
+
   /// Iterations of the last solve (u and v summed) and the worse relative residual.
   int last_iterations() const { return iterations_; }
   double last_residual() const { return residual_; }
@@ -109,6 +116,7 @@ class ImplicitVelocity {
   Field du_, dv_;    ///< the last step's changes (then this step's initial guesses)
   Field du2_, dv2_;  ///< the changes of the step before (the guess extrapolates the two)
   std::array<Field, 2> kx_, ky_;  ///< upper-convected: cell coefficients of the compact part
+  Field opx_, opy_, opc_, zero_, dtmp_;  ///< compact_operator's scratch
   Field cx_, cy_, dprev_;          ///< upper-convected: cross force, the last sweep's d
   double sweep_change_ = 0.0;
   double dt1_ = 0.0, dt2_ = 0.0;  ///< the last two steps' dt

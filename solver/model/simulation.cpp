@@ -50,6 +50,8 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
   hold_ = bodies_ && bodies_->holds();
   if (increment_)
     for (Field* f : {&gcx_n_, &gcy_n_, &vnx_, &vny_, &srcx_, &srcy_}) f->resize(nx, ny, ng);
+  if (bodies_ && cfg_.solid_picard > 0)
+    throw std::invalid_argument("time.solid_picard_iterations is not offered with rigid bodies");
   if (hold_ && cfg_.solid_time == SolidStressTime::UpperConvected)
     throw std::invalid_argument("solid.forcing_hold is not offered with time.solid_stress = \"upper_convected\"");
   poisson_ = make_poisson_solver(cfg_.poisson);
@@ -234,7 +236,12 @@ void Simulation::update_solids(double dt) {
     const auto t0 = clock::now();
     // a rigid body's reference map is set from its pose, not advected (solver/model/rigid_body.hpp)
     const bool rigid = bodies_ && bodies_->rigid(k);
-    if (!rigid) s.advect(uf_, vf_, u_, v_, dt);
+    // time.solid_picard_iterations: a repeated pass moves xi with the blend of u^n and the
+    // last pass's u^{n+1} (solver/model/solid_picard.cpp)
+    if (!rigid) {
+      if (xi_transport_) s.advect(uf_adv_, vf_adv_, u_adv_, v_adv_, dt);
+      else s.advect(uf_, vf_, u_, v_, dt);
+    }
     const double t_adv = std::chrono::duration<double>(clock::now() - t0).count();
     if (!rigid) s.extrapolate();
     if (bodies_) bodies_->place(k, solids_);  // rigid: the whole map; clamped: inside its body
@@ -465,6 +472,11 @@ double Simulation::step(double dt) {
 double Simulation::step_state(double dt) {
   if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
   if (cfg_.flow == FlowMode::Prescribed) return step_prescribed(dt);
+  if (cfg_.solid_picard > 0 && !solids_.empty()) return step_picard(dt);
+  return step_once(dt);
+}
+
+double Simulation::step_once(double dt) {
   if (!solids_.empty()) {
     rho_old_ = rho_;
     move_solids(dt);                     // steps 1-3
@@ -607,6 +619,7 @@ void Simulation::apply_viscous_and_solid_stress(double dt) {
       implicit_->apply_rate(u_, v_, fx_, fy_, rho_, mimp_, qxx_, qxy_, qyy_, dt);
     } else {
       implicit_->set_held(hold_ ? &held_ : nullptr);
+      if (defect_) picard_defect_force(dt);  // solver/model/solid_picard.cpp
       implicit_->apply(u_, v_, fx_, fy_, rho_, mimp_, dt);
       if (hold_) {
         const auto& r = implicit_->held_rate();

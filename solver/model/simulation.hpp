@@ -135,6 +135,12 @@ class Simulation {
   /// The blended mixture viscosity of the current configuration (eq. 3.6).
   const Field& viscosity() const { return mu_; }
 
+  /// time.solid_picard_iterations (solver/model/solid_picard.cpp): max |u^(N) - u^(N-1)| /
+  /// max |u^(N)| of the last step's last iteration (0 without iterations), and the multigrid
+  /// cycles of all its solves (pressure and velocity, every iteration).
+  double picard_change() const { return picard_change_; }
+  long picard_cycles() const { return picard_cycles_; }
+
  private:
   void initialise();
   /// The flow's and the solids' records of state_ (the components add theirs).
@@ -148,6 +154,13 @@ class Simulation {
   void call_components(StepPoint p, double dt);
   /// step() without the components' hooks (which step() calls around it).
   double step_state(double dt);
+  /// One pass of Algorithm 1 (steps 1-9) from the current state.
+  double step_once(double dt);
+  /// time.solid_picard_iterations: the step repeated from a snapshot of the state with xi
+  /// moved by the blend of u^n and the last pass's u^{n+1} (solver/model/solid_picard.cpp).
+  double step_picard(double dt);
+  /// fx_, fy_ -= A(eta) of the last pass's velocity change (time.solid_picard_defect).
+  void picard_defect_force(double dt);
   void build_poisson_coefficients();
   /// The pressure solver's operator of the current beta (open sides as walls, the outflow
   /// sides' Dirichlet condition as the cell sink sink_).
@@ -248,6 +261,14 @@ class Simulation {
   std::unique_ptr<ImplicitVelocity> implicit_;  ///< implicit stress step (null: explicit)
   Field mimp_;                                   ///< its implicit viscosity
   Field qxx_, qxy_, qyy_;                         ///< its upper-convected tensor (kernels/helmholtz.hpp)
+  // time.solid_picard_iterations (solver/model/solid_picard.cpp)
+  bool xi_transport_ = false;            ///< move xi with (uf_adv_, vf_adv_, u_adv_, v_adv_), not uf_, u_
+  Field uf_adv_, vf_adv_, u_adv_, v_adv_;
+  bool defect_ = false;                  ///< this pass subtracts A(eta) (dprev_u_, dprev_v_) from the force
+  Field eta_, dprev_u_, dprev_v_, aeu_, aev_;
+  Field uk_, vk_, ufk_, vfk_;            ///< the last pass's end-of-step velocities
+  double picard_change_ = 0.0;
+  long picard_cycles_ = 0;
   PhaseTimers timers_;
   std::vector<std::unique_ptr<Component>> components_;
   StateRegistry state_;

@@ -247,6 +247,14 @@ void parse_time(const Ctx& ctx, const Table& top, Config& cfg) {
             "needs solid_stress = \"semi_implicit\" or \"upper_convected\"");
   t.require(implicit_solid || cfg.solid_implicit_cfl == 0.0, "solid_implicit_cfl",
             "needs solid_stress = \"semi_implicit\" or \"upper_convected\" (the explicit stress has solids.solid_cfl)");
+  cfg.solid_picard = int(t.integer("solid_picard_iterations"));
+  cfg.solid_picard_theta = t.number("solid_picard_theta");
+  cfg.solid_picard_defect = t.boolean("solid_picard_defect");
+  t.require(cfg.solid_picard == 0 || cfg.solid_time != SolidStressTime::UpperConvected, "solid_picard_iterations",
+            "is not offered with solid_stress = \"upper_convected\" (docs/implicit.md)");
+  t.require(cfg.solid_picard == 0 || !cfg.solid_picard_defect || cfg.solid_time == SolidStressTime::SemiImplicit,
+            "solid_picard_defect", "needs solid_stress = \"semi_implicit\" (it corrects through its operator); "
+            "set it false for plain repetitions of the step");
   cfg.solid_rate_sweeps = t.integer("solid_rate_sweeps");
   cfg.implicit_tol = t.number("implicit_tol");
 }

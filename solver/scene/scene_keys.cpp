@@ -152,6 +152,17 @@ std::vector<KeyDef> build_keys() {
           "P of a solid time-step limit dt <= P dx sqrt(rho_s / G) for the implicit solid stress (semi_implicit or "
           "upper_convected), which has none by default (0); with solid_implicit_reach = 2 a disc in a fluid stays "
           "bounded to P ~ 8, less through an impact (docs/implicit.md)"),
+      integer("time", "solid_picard_iterations", d.solid_picard, in(0, false, 50, false),
+              "fixed-point iterations of the whole step in which xi is advanced with (1 - solid_picard_theta) u^n + "
+              "solid_picard_theta u^{n+1} of the last iterate and the step re-solved (0: xi moved by u^n, Algorithm 1); "
+              "each costs a whole step (experimental, issue 26; docs/implicit.md)"),
+      num("time", "solid_picard_theta", d.solid_picard_theta, in(0, false, 1, false),
+          "weight of the new velocity in the transport of xi of solid_picard_iterations (1/2: midpoint, 1: backward "
+          "Euler)"),
+      boolean("time", "solid_picard_defect", d.solid_picard_defect,
+              "the iterations of solid_picard_iterations correct the last velocity change through the "
+              "semi-implicit operator, (rho/dt - A(eta)) (d - d_last) = f - rho d_last / dt, so that its term vanishes "
+              "at convergence; false: each iteration repeats the semi-implicit step with the new xi"),
       integer("time", "solid_rate_sweeps", d.solid_rate_sweeps, in(1, false, 100, false),
               "outer block Gauss-Seidel sweeps (u, then v) of solid_stress = \"upper_convected\": the first "
               "without its cross terms (b_xy and the other component's derivatives: lagged), each further "

@@ -1,0 +1,171 @@
+#!/usr/bin/env python3
+"""Issue 26, items 2-3: the fixed-point iteration of the whole step with xi moved by the new
+velocity (time.solid_picard_iterations; solver/model/solid_picard.cpp, docs/implicit.md "The
+implicit step in xi") on disc_tgv past the explicit solid step.
+
+disc_tgv at grid N^2 (default 64), mu_s / rho_s in MUS, the solid step factor P in PS
+(dt = P dx / sqrt(2 mu_s / rho_s) through time.dt_max), every run to the same end time
+T = 128 * 8 dx / sqrt(2 mu_s / rho_s) (128 steps at P = 8, --steps8), one thread each; the reference is
+the explicit cell-stress run at P = 0.5 (solids.solid_cfl = 0.5) to the same T. One row per
+run to results/implicit_picard.csv: exit code, steps, the largest total energy (kinetic +
+elastic) over its start, its growth over the second half, the largest area drift, the
+failure (a fold or a blow-up: the health check's message), ke_dev_explicit (the largest
+|KE(t) - KE_ref(t)| over the run, in % of KE(0), KE_ref interpolated in t), the last
+iteration's relative velocity change (picard_change: median and largest over the steps),
+passes per step, multigrid cycles per step of all passes (pressure and velocity) and the
+same over the reference run's pressure cycles per step ("cost": pressure-solve units).
+
+    python3 bench/picard_study.py            # the PLAN below (~15 min on a 2-core machine at load 10)
+    python3 bench/picard_study.py [--bin build/refmap] [--grid 64] [--methods a,b --mus 100,1e4 --ps 2,4,8]
+"""
+import argparse
+import bisect
+import csv
+import math
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "scenes"))
+import solids_csv  # noqa: E402
+
+SEMI = ['time.viscous="implicit"', 'time.solid_stress="semi_implicit"']
+
+
+def picard(n, theta, defect=True, k=None):
+    s = SEMI + [f"time.solid_picard_iterations={n}", f"time.solid_picard_theta={theta}",
+                f"time.solid_picard_defect={'true' if defect else 'false'}"]
+    return s + [f"time.solid_implicit_k={k if k is not None else 0.5}"]
+
+
+METHODS = {
+    # today's semi-implicit splitting (one pass, xi moved by u^n), k = 0.5
+    "semi_k0.5": SEMI + ["time.solid_implicit_k=0.5"],
+    # defect correction through the eta operator, xi by the midpoint velocity, k = theta = 1/2
+    "picard_defect_th0.5_n2": picard(2, 0.5),
+    "picard_defect_th0.5_n4": picard(4, 0.5),
+    # the same with plain repetitions of the semi-implicit step (the eta term kept)
+    "picard_plain_th0.5_n2": picard(2, 0.5, defect=False),
+    # backward Euler in the transport, k = theta = 1
+    "picard_defect_th1_n2": picard(2, 1.0, k=1.0),
+    # the defect form with the preconditioner's eta reaching 2 cells further into the fluid
+    # (time.solid_implicit_reach: in the defect form it changes the iteration, not its fixed point)
+    "picard_defect_th0.5_n2_r2": picard(2, 0.5) + ["time.solid_implicit_reach=2"],
+}
+PLAN = [(["semi_k0.5", "picard_defect_th0.5_n2"], "100,1e4", "2,4,8"),
+        (["picard_plain_th0.5_n2", "picard_defect_th1_n2"], "100,1e4", "8"),
+        (["picard_defect_th0.5_n4", "picard_defect_th0.5_n2_r2"], "100,1e4", "4,8"),
+        (["picard_defect_th0.5_n2_r2"], "1e5,100", "8,16")]
+
+
+def run(binary, raw, tag, sets):
+    out = os.path.join(raw, tag)
+    shutil.rmtree(out, ignore_errors=True)
+    cmd = [binary, "run", os.path.join(ROOT, "scenes", "disc_tgv.toml"), "-o", out, "-j", "1", "-q"]
+    for s in sets:
+        cmd += ["--set", s]
+    p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
+    res = dict(rc=p.returncode, failure=p.stderr.strip().splitlines()[-1] if p.returncode and p.stderr.strip() else "")
+    path = os.path.join(out, "diagnostics.csv")
+    if not os.path.exists(path):
+        return res, None
+    head, rows = solids_csv.read_rows(path)
+    if not rows:
+        return res, None
+    col = {h: [r[k] for r in rows] for k, h in enumerate(head)}
+    e = col["total_energy"]
+    area = solids_csv.wide_columns(out, col["step"]).get("solid0_area", [])
+    mid = len(e) // 2
+    res.update(steps=int(col["step"][-1]), t_end=col["time"][-1], e_max=max(e) / e[0],
+               late_growth=max(e[mid:]) / e[mid] if e[mid] > 0 else float("nan"), e_end=e[-1] / e[0],
+               area_drift=max(abs(a - area[0]) / area[0] for a in area if not math.isnan(a)) if area else float("nan"),
+               poisson_per_step=statistics.mean(col["poisson_iterations"][1:] or [0]),
+               wall_per_step=col["wall_time"][-1] / max(1, len(rows) - 1))
+    if "picard_change" in col:
+        ch = col["picard_change"][1:]
+        res.update(change_median=statistics.median(ch), change_max=max(ch),
+                   cycles_per_step=statistics.mean(col["picard_cycles"][1:]))
+    elif "implicit_iterations" in col:
+        res.update(cycles_per_step=statistics.mean(
+            [a + b for a, b in zip(col["poisson_iterations"][1:], col["implicit_iterations"][1:])]))
+    else:
+        res.update(cycles_per_step=res["poisson_per_step"])
+    return res, (col["time"], col["kinetic_energy"])
+
+
+def ke_dev(series, ref):
+    """Largest |KE(t) - KE_ref(t)| over the run's rows, in % of KE(0) (KE_ref linear in t)."""
+    t, ke = series
+    tr, kr = ref
+    dev = 0.0
+    for ti, ki in zip(t, ke):
+        j = min(max(bisect.bisect_left(tr, ti), 1), len(tr) - 1)
+        w = (ti - tr[j - 1]) / (tr[j] - tr[j - 1]) if tr[j] > tr[j - 1] else 0.0
+        dev = max(dev, abs(ki - ((1 - w) * kr[j - 1] + w * kr[j])))
+    return 100.0 * dev / ke[0]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--bin", default=os.path.join(ROOT, "build", "refmap"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "results"))
+    ap.add_argument("--raw", default="/tmp/refmap_picard_study")
+    ap.add_argument("--grid", type=int, default=64)
+    ap.add_argument("--methods", default="")
+    ap.add_argument("--mus", default="100,1e4")
+    ap.add_argument("--ps", default="2,4,8")
+    ap.add_argument("--steps8", type=int, default=128, help="steps at P = 8 (sets the end time T)")
+    a = ap.parse_args()
+    path = os.path.join(a.out, "implicit_picard.csv")
+    cols = ["method", "grid", "mu_s_over_rho_s", "P", "rc", "steps", "t_end", "e_max", "late_growth", "e_end",
+            "area_drift", "ke_dev_explicit", "change_median", "change_max", "passes", "cycles_per_step",
+            "cost_pressure_units", "wall_per_step", "failure"]
+    old = []
+    if os.path.exists(path):  # rows of other (method, grid, mu, P) are kept
+        with open(path) as f:
+            old = list(csv.DictReader(f))
+    n = a.grid
+    plan = [(a.methods.split(","), a.mus, a.ps)] if a.methods else PLAN
+    refs = {}
+    new = []
+    for ms, mus, ps in plan:
+        for mu in [float(x) for x in mus.split(",")]:
+            c = math.sqrt(2.0 * mu)
+            t_end = a.steps8 * 8.0 / n / c
+            base = [f"grid.nx={n}", f"grid.ny={n}", f"time.end={t_end!r}", "output.vtk=false", f"solid.0.mu_s={mu:g}"]
+            if mu not in refs:
+                r, series = run(a.bin, a.raw, f"explicit_n{n}_mu{mu:g}_P0.5", base + ["solids.solid_cfl=0.5"])
+                refs[mu] = (series, r.get("poisson_per_step", float("nan")))
+                row = dict(method="explicit_cell", grid=n, mu_s_over_rho_s=f"{mu:g}", P="0.5", passes=1,
+                           cost_pressure_units=1.0, **r)
+                print(", ".join(f"{k}={row.get(k, '')}" for k in cols), flush=True)
+                new.append(row)
+            for m in ms:
+                for p in [float(x) for x in ps.split(",")]:
+                    sets = METHODS[m] + base + [f"time.dt_max={p / n / c!r}"]
+                    r, series = run(a.bin, a.raw, f"{m}_n{n}_mu{mu:g}_P{p:g}", sets)
+                    passes = 1
+                    for s in METHODS[m]:
+                        if s.startswith("time.solid_picard_iterations="):
+                            passes += int(s.split("=")[1])
+                    row = dict(method=m, grid=n, mu_s_over_rho_s=f"{mu:g}", P=f"{p:g}", passes=passes, **r)
+                    if series and refs[mu][0]:
+                        row["ke_dev_explicit"] = ke_dev(series, refs[mu][0])
+                    if "cycles_per_step" in r:
+                        row["cost_pressure_units"] = r["cycles_per_step"] / refs[mu][1]
+                    print(", ".join(f"{k}={row.get(k, '')}" for k in cols), flush=True)
+                    new.append(row)
+    keys = {(r["method"], str(r["grid"]), r["mu_s_over_rho_s"], r["P"]) for r in new}
+    rows = [r for r in old if (r["method"], r["grid"], r["mu_s_over_rho_s"], r["P"]) not in keys] + new
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=cols, extrasaction="ignore")
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in r.items() if k in cols})
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,126 @@
+// time.solid_picard_iterations (issue 26; docs/implicit.md, "The implicit step in xi"): a
+// fixed-point iteration of the whole step in which the elastic response of the new step is
+// implicit where the stress is.
+//
+// Algorithm 1 moves xi with the velocity of the step's start (eq. 3.3 with u_f^n) and then
+// applies the stress of that xi: symplectic Euler, whose elastic step is bounded by the
+// shear wave (dt <= P dx sqrt(rho_s / G)); the semi-implicit splitting does not lift that
+// bound for a solid in a fluid (the measurements in docs/implicit.md). Here the step is taken
+// once as before, then repeated N times from a snapshot of the state at t^n, each repetition
+// moving xi with
+//     u_xi = (1 - theta) u^n + theta u^{n+1,(k)}          (faces and cells alike)
+// where u^{n+1,(k)} is the previous pass's end-of-step velocity (its projected face
+// velocities: divergence-free, like u_f^n, so the blend is too). theta = 1/2 is the implicit
+// midpoint of the transport (energy-neutral for the linear 1-D oscillator's position update),
+// theta = 1 backward Euler. Everything downstream of xi (level set, blend, stress, momentum,
+// projection) is recomputed from the new xi, so at convergence the stress of the new step,
+// its blend and its band all belong to xi^{n+1}(u^{n+1}).
+//
+// The fixed point alone converges only below the explicit limit (1-D model: the
+// iteration's factor is theta w for w = (c dt kappa)^2). With time.solid_picard_defect each
+// repeated pass is a defect correction through the semi-implicit operator instead:
+//     (rho/dt - A(m)) d^(k+1) = f(xi^(k)) - A(eta) d^(k),     m = mu_impl + eta,
+// eta = k G dt (1 - H): at convergence the eta terms cancel and (rho/dt) d = f, the step
+// above with no stabilising term left; the eta multigrid is the preconditioner. For the
+// 1-D oscillator the iteration factor is w (k - theta) / (1 + k w): with k = theta the
+// linearised elastic Jacobian dt theta G lap is exactly the stabilising operator k G dt lap
+// in the solid's interior (one pass converges), and it contracts for every w when
+// k >= theta / 2. What the band and the blend do to it is what the iteration measures.
+//
+// Each pass costs a whole step (xi advection and extrapolation, a velocity and a pressure
+// solve): picard_cycles() counts the multigrid cycles of all of them.
+#include <algorithm>
+#include <cmath>
+
+#include "solver/io/checkpoint_io.hpp"
+#include "solver/model/boundary.hpp"
+#include "solver/model/implicit_step.hpp"
+#include "solver/model/simulation.hpp"
+#include "solver/model/solid.hpp"
+
+namespace refmap {
+
+namespace {
+
+/// out = (1 - th) a + th b over the whole array (ghosts included).
+void blend_into(Field& out, const Field& a, const Field& b, double th) {
+  const double* pa = a.raw();
+  const double* pb = b.raw();
+  double* po = out.raw();
+  for (std::size_t n = 0; n < out.raw_size(); ++n) po[n] = (1.0 - th) * pa[n] + th * pb[n];
+}
+
+}  // namespace
+
+double Simulation::step_picard(double dt) {
+  const Grid& g = cfg_.grid;
+  const int nx = g.nx, ny = g.ny, ng = Grid::ng;
+  const bool defect = cfg_.solid_picard_defect && implicit_;
+  if (uk_.nx() == 0) {
+    for (Field* f : {&u_adv_, &v_adv_, &uk_, &vk_}) f->resize(nx, ny, ng);
+    for (Field* f : {&uf_adv_, &ufk_}) f->resize(nx + 1, ny, ng);
+    for (Field* f : {&vf_adv_, &vfk_}) f->resize(nx, ny + 1, ng);
+    if (defect)
+      for (Field* f : {&eta_, &dprev_u_, &dprev_v_, &aeu_, &aev_}) f->resize(nx, ny, ng);
+  }
+  // the state at t^n: every record a step reads (the checkpoint's, so a pass from it is the
+  // step from t^n bit for bit; tests/test_solid_picard.cpp checks that)
+  CheckpointWriter snap;
+  state_.save(snap);
+  step_once(dt);
+  long cycles = last_stats_.iterations + (implicit_ ? implicit_->last_iterations() : 0);
+  picard_change_ = 0.0;
+  const double th = cfg_.solid_picard_theta;
+  for (int it = 1; it <= cfg_.solid_picard; ++it) {
+    uk_ = u_;
+    vk_ = v_;
+    ufk_ = uf_;
+    vfk_ = vf_;
+    if (defect) {
+      dprev_u_ = implicit_->last_change(0);
+      dprev_v_ = implicit_->last_change(1);
+    }
+    CheckpointReader r = CheckpointReader::from_payload(snap.payload(), "the step's snapshot");
+    state_.load(r);
+    solid_diag_step_ = -1;  // caches keyed by the step count (as load_state)
+    ke_step_ = -1;
+    contact_force_written_ = true;  // the restored contact force may be nonzero: clear it
+    blend_into(uf_adv_, uf_, ufk_, th);
+    blend_into(vf_adv_, vf_, vfk_, th);
+    blend_into(u_adv_, u_, uk_, th);
+    blend_into(v_adv_, v_, vk_, th);
+    xi_transport_ = true;
+    defect_ = defect;
+    step_once(dt);
+    xi_transport_ = false;
+    defect_ = false;
+    cycles += last_stats_.iterations + (implicit_ ? implicit_->last_iterations() : 0);
+    double dmax = 0.0, umax = 0.0;
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        dmax = std::max({dmax, std::abs(u_(i, j) - uk_(i, j)), std::abs(v_(i, j) - vk_(i, j))});
+        umax = std::max({umax, std::abs(u_(i, j)), std::abs(v_(i, j))});
+      }
+    picard_change_ = umax > 0.0 ? dmax / umax : 0.0;
+  }
+  picard_cycles_ = cycles;
+  return dt;
+}
+
+void Simulation::picard_defect_force(double dt) {
+  // eta exactly as implicit_viscosity() put it into mimp_ in this pass
+  eta_.fill(0.0);
+  for (const auto& s : solids_)
+    if (s->spec().mu_s > 0.0)
+      s->add_blend(eta_, cfg_.solid_implicit_k * s->wave_modulus() * dt, 0.0,
+                   cfg_.solid_implicit_reach * cfg_.grid.dx);
+  fill_scalar_ghosts(eta_, cfg_.bc);
+  implicit_->compact_operator(eta_, dprev_u_, dprev_v_, aeu_, aev_);
+  for (int j = 0; j < cfg_.grid.ny; ++j)
+    for (int i = 0; i < cfg_.grid.nx; ++i) {
+      fx_(i, j) -= aeu_(i, j);
+      fy_(i, j) -= aev_(i, j);
+    }
+}
+
+}  // namespace refmap
