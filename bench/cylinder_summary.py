@@ -160,7 +160,8 @@ def plot(out, path):
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, 4, figsize=(16, 4))
     colours = {"diffuse": "tab:blue", "interpolated": "tab:orange", "sharp": "tab:green", "sharp+hold": "tab:purple",
-               "sharp+inc": "tab:brown", "sharp+hold+inc": "tab:red", "sharp+hold+inc+rc": "tab:pink"}
+               "sharp+inc": "tab:brown", "sharp+hold+inc": "tab:red", "sharp+hold+inc+rc": "tab:pink",
+               "sharp+inc+rc": "tab:olive"}
     by = grid_runs(out)
     for ax, q in zip(axes, QUANTITIES):
         for forcing, rows in by.items():
