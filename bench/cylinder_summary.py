@@ -20,7 +20,7 @@ Usage: cylinder_summary.py [--keep CSV] [--convergence CSV] [--plot PNG] RUN_DIR
     log2(|v(4h) - v(2h)| / |v(2h) - v(h)|) (Richardson: no reference value needed) with the
     limit v(h) + (v(h) - v(2h)) / (2^p - 1); standard library only.
   --plot: accuracy against cost (|error| of c_D, c_L, Delta p, L_a against wall time), one line
-    per forcing over its grids, the dt study as open markers (needs Debian's matplotlib).
+    per forcing over its grids, the dt studies as open markers (needs Debian's matplotlib).
 """
 import csv
 import os
@@ -160,7 +160,8 @@ def plot(out, path):
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, 4, figsize=(16, 4))
     colours = {"diffuse": "tab:blue", "interpolated": "tab:orange", "sharp": "tab:green", "sharp+hold": "tab:purple",
-               "sharp+inc": "tab:brown", "sharp+hold+inc": "tab:red"}
+               "sharp+inc": "tab:brown", "sharp+hold+inc": "tab:red", "sharp+hold+inc+rc": "tab:pink",
+               "sharp+inc+rc": "tab:olive"}
     by = grid_runs(out)
     for ax, q in zip(axes, QUANTITIES):
         for forcing, rows in by.items():
@@ -183,7 +184,7 @@ def plot(out, path):
     axes[0].legend(fontsize=8)
     axes[0].set_ylabel("relative error against the centre of the bounds")
     fig.suptitle("Cylinder Re 20 (Schafer & Turek 2D-1): accuracy against cost; labels: cells per diameter; "
-                 "open: dt/2, dt/4 on 10 cells per D; dotted: half-width of the bounds", fontsize=9)
+                 "open: the dt studies (dt/2, dt/4); dotted: half-width of the bounds", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 

@@ -27,7 +27,9 @@
 # time: a last step cut short to land on an end time spoils the force and the pressure),
 # FINE_STEPS (default 2600: the 0.0025 grid stops after 2600 steps, t = 6.03, c_D within 1e-4 of
 # its steady value on the coarser grids; the 0.00125 grid after 2 FINE_STEPS), DT_STUDY (default 1: the 0.01
-# grid again at dt / 2 and dt / 4 for each forcing), RADIUS_STUDY (default 0; 1: one extra
+# grid again at dt / 2 and dt / 4 for each forcing; 0: none), DT_STUDY_DX (default 0.01: the grid of the
+# dt study, e.g. 0.005; runs <variant>_dx_<dx>_dt<f>), DT_FACTORS (default "2 4": the divisors of dt
+# in the dt study), RADIUS_STUDY (default 0; 1: one extra
 # diffuse run on dx = 0.005 with the radius reduced by dx/2, where the diffuse surface sits),
 # REUSE (default 0; 1: keep a run whose directory already holds timings.csv), CSV (default
 # results/cylinder_re20.csv). The summary reads every run directory in RAW, so runs of earlier
@@ -84,9 +86,10 @@ for forcing in ${FORCINGS:-diffuse interpolated sharp sharp+hold+inc}; do
     # the scene's dt = 0.9278 dx on every grid
     run "$forcing" "dx_$dx" "$dx" "$threads" "$(python3 -c "print(0.9278 * $dx)")" "${extra[@]}"
   done
-  if [ "${DT_STUDY:-1}" = "1" ]; then  # the coarse grid at dt / 2 and dt / 4
-    for f in 2 4; do
-      run "$forcing" "dx_0.01_dt$f" 0.01 "${THREADS:-1}" "$(python3 -c "print(0.009278 / $f)")"
+  if [ "${DT_STUDY:-1}" = "1" ]; then  # the grid DT_STUDY_DX at dt / f for f in DT_FACTORS
+    dxs="${DT_STUDY_DX:-0.01}"
+    for f in ${DT_FACTORS:-2 4}; do
+      run "$forcing" "dx_${dxs}_dt$f" "$dxs" "${THREADS:-1}" "$(python3 -c "print(0.9278 * $dxs / $f)")"
     done
   fi
 done
