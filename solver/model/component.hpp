@@ -7,11 +7,13 @@
 //  * is called at fixed, named points of Simulation::step (StepPoint) - the points stay in
 //    the step's order whatever the order in which components were added; at one point the
 //    components are called in the order they were added,
-//  * may add columns to diagnostics.csv (the values of the current state) and cell fields
-//    to the VTK frames.
+//  * may add columns to diagnostics.csv (the values of the current state), cell fields
+//    to the VTK frames and CSV files of its own (files(): the run loop writes them at
+//    every VTK frame, keeps them across a checkpoint and names none of them).
 // A scene's components are made by their kinds (solver/model/component_kind.hpp: keys, parser,
 // factory), so adding one takes its own files and one registration - or add_component()
 // from outside, as the tests do.
+#include <functional>
 #include <limits>
 #include <string>
 #include <utility>
@@ -36,6 +38,22 @@ enum class StepPoint {
   End,
 };
 
+/// A CSV file of a component's own in the run's output directory. The run loop
+/// (solver/app/run.cpp) writes it only with VTK frames (output.vtk): it creates it with
+/// its column header, appends the rows of the current state at every frame (the first,
+/// the scheduled ones, the last), records its length in every checkpoint (a resumed run
+/// cuts it back to the rows of the checkpoint and continues it) and removes an earlier
+/// run's copy from a reused directory (the file names of every kind:
+/// ComponentKind::files, solver/model/component_kind.hpp).
+struct ComponentFile {
+  /// Its name in the output directory, "<stem>.csv"; its checkpoint records are
+  /// run.<stem>_bytes and run.<stem>_rows.
+  std::string name;
+  std::vector<std::string> columns;
+  /// Appends the rows of frame `frame` (the index of frame_NNNNN.vti) for the current state.
+  std::function<void(const Simulation&, int frame, std::vector<std::vector<double>>& rows)> rows;
+};
+
 class Component {
  public:
   virtual ~Component() = default;
@@ -54,6 +72,8 @@ class Component {
   /// Its cell fields (name, nx x ny field) written into every VTK frame after the built-in
   /// ones (solver/app/run.cpp).
   virtual std::vector<std::pair<std::string, const Field*>> frame_fields() const { return {}; }
+  /// Its own output files (ComponentFile), in the order of their checkpoint records.
+  virtual std::vector<ComponentFile> files() const { return {}; }
 };
 
 }  // namespace refmap

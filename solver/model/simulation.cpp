@@ -18,9 +18,7 @@
 #include "solver/model/component_kind.hpp"
 #include "solver/components/control_volume_forces.hpp"
 #include "solver/io/expression.hpp"
-#include "solver/components/markers.hpp"
 #include "solver/model/time_step_limits.hpp"
-#include "solver/components/tracers.hpp"
 
 namespace refmap {
 
@@ -140,9 +138,7 @@ void Simulation::set_stage_probe(std::function<void(Stage, double dt)> probe) {
   add_component(std::make_unique<StageProbe>(std::move(probe)));
 }
 
-const Tracers* Simulation::tracers() const { return component<Tracers>(); }
 const ControlVolumeForces* Simulation::control_volume_forces() const { return component<ControlVolumeForces>(); }
-const Markers* Simulation::markers() const { return component<Markers>(); }
 
 namespace {
 

@@ -24,8 +24,6 @@ namespace refmap {
 
 class CheckpointWriter;
 class CheckpointReader;
-class Tracers;
-class Markers;
 class ControlVolumeForces;
 
 class Simulation {
@@ -53,10 +51,6 @@ class Simulation {
   const Field& vf() const { return vf_; }  ///< y-face normal velocity, nx x (ny+1)
   Field& u_mut() { ke_step_ = -1; return u_; }
   Field& v_mut() { ke_step_ = -1; return v_; }
-
-  /// Passive fluid tracers and solid material points (null when the scene has none).
-  const Tracers* tracers() const;
-  const Markers* markers() const;
 
   // components (solver/model/component.hpp)
   /// Attaches a component: its state joins the checkpoint, its hooks the step, its columns
