@@ -10,6 +10,7 @@
 
 #include "solver/components/actuation.hpp"
 #include "solver/model/component_kind.hpp"
+#include "solver/components/contact_component.hpp"
 #include "solver/components/control_volume_forces.hpp"
 #include "solver/components/markers.hpp"
 #include "solver/scene/scene.hpp"
@@ -103,7 +104,9 @@ TEST(ComponentKinds, OptionsAreParsedOnceIntoTypes) {
   ASSERT_NE(sim.component<Markers>(), nullptr);
   EXPECT_EQ(sim.component<Markers>()->points().size(), 4u);
   EXPECT_NE(sim.control_volume_forces(), nullptr);
-  EXPECT_EQ(sim.components().size(), 4u);
+  // and the contact component that every scene with solids has (solver/components/contact_component.hpp)
+  ASSERT_NE(sim.component<ContactComponent>(), nullptr);
+  EXPECT_EQ(sim.components().size(), 5u);
 }
 
 TEST(ComponentKinds, ASceneWithoutThemHasNone) {

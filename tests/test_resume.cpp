@@ -286,6 +286,52 @@ TEST(Components, OwnFileIsWrittenAtFramesAndContinuedAfterACheckpoint) {
   fs::remove_all(dir);
 }
 
+/// A component whose columns go right after built-in ones (Component::columns_after,
+/// solid_columns_after).
+class Anchored : public Component {
+ public:
+  const char* name() const override { return "anchored"; }
+  std::vector<std::string> columns() const override { return {"twice_time"}; }
+  void values(const Simulation& sim, std::vector<double>& out) const override { out.push_back(2.0 * sim.time()); }
+  const char* columns_after() const override { return "time"; }
+  std::vector<std::string> solid_columns() const override { return {"index_plus_one"}; }
+  void solid_values(const Simulation&, int k, std::vector<double>& out) const override { out.push_back(k + 1.0); }
+  const char* solid_columns_after() const override { return "area"; }
+};
+
+TEST(Components, ColumnsGoRightAfterTheBuiltInColumnTheyName) {
+  const Config cfg = load_scene(testing::scene_path("disc_tgv.toml"), {"grid.nx=64", "grid.ny=64"});
+  Simulation sim(cfg);
+  sim.add_component(std::make_unique<Anchored>());
+  const double dt = sim.step();
+  const auto cols = diagnostic_columns(sim);
+  const auto vals = diagnostic_values(sim, dt, 0.0);
+  ASSERT_EQ(cols.size(), vals.size());
+  auto at = [&](const std::vector<std::string>& c, const std::string& name) {
+    return std::size_t(std::find(c.begin(), c.end(), name) - c.begin());
+  };
+  const std::size_t k = at(cols, "twice_time");
+  ASSERT_LT(k, cols.size());
+  EXPECT_EQ(cols[k - 1], "time");
+  EXPECT_EQ(vals[k], 2.0 * sim.time());  // exact: a doubling
+  // the contact component's column keeps its place after total_energy
+  const std::size_t e = at(cols, "contact_energy");
+  ASSERT_LT(e, cols.size());
+  EXPECT_EQ(cols[e - 1], "total_energy");
+  const auto scols = solid_columns(sim);
+  const auto rows = solid_values(sim);
+  ASSERT_EQ(rows.size(), sim.solids().size());
+  ASSERT_EQ(rows[0].size(), scols.size());
+  const std::size_t s = at(scols, "index_plus_one");
+  ASSERT_LT(s, scols.size());
+  EXPECT_EQ(scols[s - 1], "area");
+  for (std::size_t r = 0; r < rows.size(); ++r) EXPECT_EQ(rows[r][s], double(r) + 1.0);
+  const std::size_t gap = at(scols, "gap_solid");
+  ASSERT_LT(gap, scols.size());
+  EXPECT_EQ(scols[gap - 1], "sigma_max");
+  EXPECT_EQ(scols[gap + 1], "gap_wall");
+}
+
 TEST(StateRegistry, RefusesATagRegisteredTwice) {
   StateRegistry reg;
   double a = 0, b = 0;

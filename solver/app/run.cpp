@@ -286,18 +286,6 @@ class RunOutput {
       if (f.csv) f.csv->flush();
   }
 
-  /// events.csv: the contact event log, one "time,solid,event,value,with" row per event.
-  void events(const std::vector<ContactEvent>& log) {
-    if (!enabled()) return;
-    const std::string path = (fs::path(dir_) / "events.csv").string();
-    std::FILE* f = std::fopen(path.c_str(), "w");
-    if (!f) throw std::runtime_error("cannot write " + path);
-    std::fprintf(f, "time,solid,event,value,with\n");
-    for (const ContactEvent& e : log)
-      std::fprintf(f, "%.10g,%d,%s,%.10g,%s\n", e.time, e.solid, e.event.c_str(), e.value, e.with.c_str());
-    std::fclose(f);
-  }
-
  private:
   /// A component's file (solver/model/component.hpp) and its writer (null without an
   /// output directory); bytes and rows as a checkpoint recorded them (resume).
@@ -530,17 +518,15 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
     }
   }
   progress.finish();
-  try {  // the end of the run: the last row and frame (unless written), probes, events
+  try {  // the end of the run: the last row and frame (unless written), probes, the components' end
     if (!sum.failed) {
       if (!outputs[kRow].when.due(sim.steps(), sim.time())) out.row(last_dt, wall_seconds_since(wall0));
       if (!sum.signal) out.frame();
       out.probes();
     }
     out.flush();
-    if (sim.contact()) {
-      sim.finish_events();
-      out.events(sim.contact()->events());
-    }
+    // the components' end (the contact's events.csv: solver/components/contact_component.hpp)
+    for (const auto& c : sim.components()) c->finish(sim, out.enabled() ? out.dir() : std::string());
   } catch (const std::runtime_error& e) {
     if (!sum.failed) fail(e.what() + std::string(" (writing the final output)"));
   }
