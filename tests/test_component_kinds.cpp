@@ -10,6 +10,7 @@
 
 #include "solver/components/actuation.hpp"
 #include "solver/model/component_kind.hpp"
+#include "solver/components/contact_component.hpp"
 #include "solver/components/control_volume_forces.hpp"
 #include "solver/components/markers.hpp"
 #include "solver/scene/scene.hpp"
@@ -98,12 +99,14 @@ TEST(ComponentKinds, OptionsAreParsedOnceIntoTypes) {
 
   // the Simulation makes one component per kind: 5 + 8 tracers, 1 + 3 markers
   Simulation sim(c);
-  ASSERT_NE(sim.tracers(), nullptr);
-  EXPECT_EQ(sim.tracers()->size(), 13);
-  ASSERT_NE(sim.markers(), nullptr);
-  EXPECT_EQ(sim.markers()->points().size(), 4u);
+  ASSERT_NE(sim.component<Tracers>(), nullptr);
+  EXPECT_EQ(sim.component<Tracers>()->size(), 13);
+  ASSERT_NE(sim.component<Markers>(), nullptr);
+  EXPECT_EQ(sim.component<Markers>()->points().size(), 4u);
   EXPECT_NE(sim.control_volume_forces(), nullptr);
-  EXPECT_EQ(sim.components().size(), 4u);
+  // and the contact component that every scene with solids has (solver/components/contact_component.hpp)
+  ASSERT_NE(sim.component<ContactComponent>(), nullptr);
+  EXPECT_EQ(sim.components().size(), 5u);
 }
 
 TEST(ComponentKinds, ASceneWithoutThemHasNone) {

@@ -18,6 +18,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "solver/components/contact_component.hpp"
+#include "solver/model/contact.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/model/simulation.hpp"
 #include "tests/fixtures/scene_text.hpp"
@@ -150,11 +152,12 @@ TEST(ContactForce, PairForceEqualAndOppositeMomentumToRoundOff) {
   }
   // the whole face force field sums to zero too
   const Grid& g = sim.grid();
+  const Field &fx = sim.component<ContactComponent>()->force_x(), &fy = sim.component<ContactComponent>()->force_y();
   double sx = 0, sy = 0, ax = 0, ay = 0;
   for (int j = 0; j < g.ny; ++j)
-    for (int i = 0; i <= g.nx; ++i) { sx += sim.contact_force_x()(i, j); ax += std::abs(sim.contact_force_x()(i, j)); }
+    for (int i = 0; i <= g.nx; ++i) { sx += fx(i, j); ax += std::abs(fx(i, j)); }
   for (int j = 0; j <= g.ny; ++j)
-    for (int i = 0; i < g.nx; ++i) { sy += sim.contact_force_y()(i, j); ay += std::abs(sim.contact_force_y()(i, j)); }
+    for (int i = 0; i < g.nx; ++i) { sy += fy(i, j); ay += std::abs(fy(i, j)); }
   std::printf("[contact momentum] %d steps with contact force (t = %.3f), max |F_pair| = %.3e, "
               "max |F_a + F_b| / |F_a| = %.3e, max |P - P0| / |P0| = %.3e, min gap = %.3f dx\n",
               active, sim.time(), max_force, worst_pair, drift, min_gap / g.dx);
@@ -291,7 +294,7 @@ Bounce run_bounce(const std::string& scene, const std::vector<std::string>& sets
         b.contact_gain = (e - e_start) / e_start;  // the first contact
     }
   }
-  sim.finish_events();
+  for (const auto& c : sim.components()) c->finish(sim, "");  // as at the end of a run, without files
   b.released = e0 - e_min;
   for (const auto& e : sim.contact()->events())
     if (e.event == "restitution" && b.restitution < 0) b.restitution = e.value;

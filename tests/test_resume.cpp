@@ -11,9 +11,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "solver/app/run.hpp"
 #include "solver/io/checkpoint_io.hpp"
 #include "solver/model/diagnostics.hpp"
 #include "solver/scene/scene.hpp"
@@ -146,6 +149,13 @@ class EnergyIntegral : public Component {
   }
   std::vector<std::string> columns() const override { return {"energy_integral"}; }
   void values(const Simulation&, std::vector<double>& out) const override { out.push_back(integral_); }
+  /// energy_integral.csv: one row per VTK frame (the run loop writes it, solver/app/run.cpp).
+  std::vector<ComponentFile> files() const override {
+    return {{"energy_integral.csv", {"frame", "t", "integral"},
+             [this](const Simulation& sim, int frame, std::vector<std::vector<double>>& rows) {
+               rows.push_back({double(frame), sim.time(), integral_});
+             }}};
+  }
   double integral() const { return integral_; }
 
  private:
@@ -209,6 +219,117 @@ TEST(Components, HooksLimitTheStepAndAddColumns) {
   ASSERT_EQ(vals.size(), cols.size());
   // the sum after one step: dt times the kinetic energy at its end
   EXPECT_DOUBLE_EQ(vals.back(), dt * sim.kinetic_energy());
+}
+
+TEST(Components, OwnFileIsWrittenAtFramesAndContinuedAfterACheckpoint) {
+  // 20 steps of 0.005 with a frame (and a checkpoint) every 4 steps; the stopped run ends
+  // after step 10, its last checkpoint is that of step 8, and its final frame (step 10)
+  // is written after it: the resumed run must cut that row off and write the same file
+  Config cfg = small_taylor_green();
+  cfg.dt_fixed = 0.005;
+  cfg.t_end = 0.1;
+  cfg.output_interval = 0.02;
+  cfg.write_vtk = true;
+  cfg.checkpoint_frames = true;
+  const fs::path dir = fs::temp_directory_path() / ("refmap_component_file_" + std::to_string(::getpid()));
+  const fs::path whole_dir = dir / "whole", stopped_dir = dir / "stopped";
+  fs::remove_all(dir);
+  fs::create_directories(whole_dir);
+  // a reused directory loses the files of every kind (ComponentKind::files), even of one
+  // this scene does not use
+  std::ofstream(whole_dir / "tracers.csv") << "stale\n";
+  RunOptions opt = RunOptions::silent();
+  opt.scene_text = "checkpointed";  // checkpoints are written only with a scene text
+  auto make = [&](const Config& c) {
+    auto sim = std::make_unique<Simulation>(c);
+    sim->add_component(std::make_unique<EnergyIntegral>());
+    return sim;
+  };
+  auto whole = make(cfg);
+  opt.out_dir = whole_dir.string();
+  ASSERT_FALSE(run(*whole, opt).failed);
+  EXPECT_FALSE(fs::exists(whole_dir / "tracers.csv"));
+  const std::string file_whole = slurp(whole_dir / "energy_integral.csv");
+  // one row per frame, the frame's index first and the integral of the end last
+  std::istringstream in(file_whole);
+  std::string line, last;
+  int rows = 0, frames = 0;
+  std::getline(in, line);
+  EXPECT_EQ(line, "frame,t,integral");
+  while (std::getline(in, line)) {
+    EXPECT_EQ(std::stoi(line.substr(0, line.find(','))), rows) << line;
+    ++rows;
+    last = line;
+  }
+  for (const auto& e : fs::directory_iterator(whole_dir)) frames += e.path().extension() == ".vti";
+  EXPECT_EQ(rows, frames);
+  EXPECT_GE(rows, 6);  // frames at steps 0, 4, 8, 12, 16, 20
+  // %.10g in the file: 10 significant digits
+  const double integral = std::stod(last.substr(last.rfind(',') + 1));
+  EXPECT_NEAR(integral, whole->component<EnergyIntegral>()->integral(),
+              1e-9 * whole->component<EnergyIntegral>()->integral());
+
+  Config stop = cfg;
+  stop.max_steps = 10;
+  auto first = make(stop);
+  opt.out_dir = stopped_dir.string();
+  ASSERT_FALSE(run(*first, opt).failed);
+  ASSERT_NE(slurp(stopped_dir / "energy_integral.csv"), file_whole);
+  CheckpointReader r((stopped_dir / "checkpoint.bin").string());
+  read_checkpoint_scene(r);
+  auto resumed = make(cfg);
+  resumed->load_state(r);
+  EXPECT_EQ(resumed->steps(), 8);
+  opt.resume = &r;
+  ASSERT_FALSE(run(*resumed, opt).failed);
+  EXPECT_EQ(slurp(stopped_dir / "energy_integral.csv"), file_whole);
+  fs::remove_all(dir);
+}
+
+/// A component whose columns go right after built-in ones (Component::columns_after,
+/// solid_columns_after).
+class Anchored : public Component {
+ public:
+  const char* name() const override { return "anchored"; }
+  std::vector<std::string> columns() const override { return {"twice_time"}; }
+  void values(const Simulation& sim, std::vector<double>& out) const override { out.push_back(2.0 * sim.time()); }
+  const char* columns_after() const override { return "time"; }
+  std::vector<std::string> solid_columns() const override { return {"index_plus_one"}; }
+  void solid_values(const Simulation&, int k, std::vector<double>& out) const override { out.push_back(k + 1.0); }
+  const char* solid_columns_after() const override { return "area"; }
+};
+
+TEST(Components, ColumnsGoRightAfterTheBuiltInColumnTheyName) {
+  const Config cfg = load_scene(testing::scene_path("disc_tgv.toml"), {"grid.nx=64", "grid.ny=64"});
+  Simulation sim(cfg);
+  sim.add_component(std::make_unique<Anchored>());
+  const double dt = sim.step();
+  const auto cols = diagnostic_columns(sim);
+  const auto vals = diagnostic_values(sim, dt, 0.0);
+  ASSERT_EQ(cols.size(), vals.size());
+  auto at = [&](const std::vector<std::string>& c, const std::string& name) {
+    return std::size_t(std::find(c.begin(), c.end(), name) - c.begin());
+  };
+  const std::size_t k = at(cols, "twice_time");
+  ASSERT_LT(k, cols.size());
+  EXPECT_EQ(cols[k - 1], "time");
+  EXPECT_EQ(vals[k], 2.0 * sim.time());  // exact: a doubling
+  // the contact component's column keeps its place after total_energy
+  const std::size_t e = at(cols, "contact_energy");
+  ASSERT_LT(e, cols.size());
+  EXPECT_EQ(cols[e - 1], "total_energy");
+  const auto scols = solid_columns(sim);
+  const auto rows = solid_values(sim);
+  ASSERT_EQ(rows.size(), sim.solids().size());
+  ASSERT_EQ(rows[0].size(), scols.size());
+  const std::size_t s = at(scols, "index_plus_one");
+  ASSERT_LT(s, scols.size());
+  EXPECT_EQ(scols[s - 1], "area");
+  for (std::size_t r = 0; r < rows.size(); ++r) EXPECT_EQ(rows[r][s], double(r) + 1.0);
+  const std::size_t gap = at(scols, "gap_solid");
+  ASSERT_LT(gap, scols.size());
+  EXPECT_EQ(scols[gap - 1], "sigma_max");
+  EXPECT_EQ(scols[gap + 1], "gap_wall");
 }
 
 TEST(StateRegistry, RefusesATagRegisteredTwice) {

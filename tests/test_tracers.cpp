@@ -50,7 +50,7 @@ double rotation_error(double dt) {
   Simulation sim(cfg);
   run_to_end(sim, dt);
   double e = 0.0;
-  for (int k = 0; k < 4; ++k) e = std::max(e, std::hypot(sim.tracers()->x(k) - (0.5 + 0.1 * k), sim.tracers()->y(k) - 0.5));
+  for (int k = 0; k < 4; ++k) e = std::max(e, std::hypot(sim.component<Tracers>()->x(k) - (0.5 + 0.1 * k), sim.component<Tracers>()->y(k) - 0.5));
   return e;
 }
 
@@ -79,10 +79,10 @@ TEST(Tracers, StreamFunctionKeptInTaylorGreen) {
     Simulation sim(cfg);
     auto psi = [](double x, double y) { return std::sin(2 * kPi * x) * std::sin(2 * kPi * y) / (2 * kPi); };
     std::vector<double> p0;
-    for (int k = 0; k < sim.tracers()->size(); ++k) p0.push_back(psi(sim.tracers()->x(k), sim.tracers()->y(k)));
+    for (int k = 0; k < sim.component<Tracers>()->size(); ++k) p0.push_back(psi(sim.component<Tracers>()->x(k), sim.component<Tracers>()->y(k)));
     run_to_end(sim, 0.005);
     double d = 0.0;
-    for (int k = 0; k < sim.tracers()->size(); ++k) d = std::max(d, std::abs(psi(sim.tracers()->x(k), sim.tracers()->y(k)) - p0[k]));
+    for (int k = 0; k < sim.component<Tracers>()->size(); ++k) d = std::max(d, std::abs(psi(sim.component<Tracers>()->x(k), sim.component<Tracers>()->y(k)) - p0[k]));
     return d;
   };
   const double d32 = drift(32), d64 = drift(64);
@@ -99,15 +99,15 @@ TEST(Markers, FollowATranslatingDisc) {
                           disc_toml("d", 0.35, 0.35, 0.15, 0.0, "markers = [[0.35, 0.35], [0.4, 0.3]]\nboundary_markers = 8\n"));
   Simulation sim(cfg);
   run_to_end(sim, 0.01);
-  ASSERT_NE(sim.markers(), nullptr);
-  ASSERT_EQ(sim.markers()->points().size(), 10u);
+  ASSERT_NE(sim.component<Markers>(), nullptr);
+  ASSERT_EQ(sim.component<Markers>()->points().size(), 10u);
   double e = 0.0;
-  for (const auto& p : sim.markers()->points()) e = std::max(e, std::hypot(p.x - (p.X + 0.2), p.y - (p.Y + 0.1)));
+  for (const auto& p : sim.component<Markers>()->points()) e = std::max(e, std::hypot(p.x - (p.X + 0.2), p.y - (p.Y + 0.1)));
   std::printf("translating disc: max marker error %.3e (dx = %.3e)\n", e, cfg.grid.dx);
   EXPECT_LT(e, 1e-9 * cfg.grid.dx);
   // the boundary markers are on the reference circle
   for (std::size_t k = 2; k < 10; ++k) {
-    const auto& p = sim.markers()->points()[k];
+    const auto& p = sim.component<Markers>()->points()[k];
     EXPECT_NEAR(std::hypot(p.X - 0.35, p.Y - 0.35), 0.15, 1e-12);
   }
 }
@@ -122,7 +122,7 @@ TEST(Markers, FollowARotatingDisc) {
   Simulation sim(cfg);
   run_to_end(sim, dt);
   double e = 0.0;
-  for (const auto& p : sim.markers()->points()) {
+  for (const auto& p : sim.component<Markers>()->points()) {
     // a quarter turn counter-clockwise about (0.5, 0.5)
     const double xe = 0.5 - (p.Y - 0.5), ye = 0.5 + (p.X - 0.5);
     e = std::max(e, std::hypot(p.x - xe, p.y - ye));
@@ -154,15 +154,15 @@ TEST(Tracers, RestoredStateContinuesBitForBit) {
   c.load_state(r);
   EXPECT_TRUE(r.at_end());
   for (int k = 0; k < 6; ++k) c.step(0.002);
-  ASSERT_EQ(a.tracers()->size(), 13);
-  for (int k = 0; k < a.tracers()->size(); ++k) {
-    EXPECT_EQ(a.tracers()->x(k), c.tracers()->x(k)) << k;
-    EXPECT_EQ(a.tracers()->y(k), c.tracers()->y(k)) << k;
-    EXPECT_NE(a.tracers()->x(k), b.tracers()->x(k)) << k;  // they did move after the checkpoint
+  ASSERT_EQ(a.component<Tracers>()->size(), 13);
+  for (int k = 0; k < a.component<Tracers>()->size(); ++k) {
+    EXPECT_EQ(a.component<Tracers>()->x(k), c.component<Tracers>()->x(k)) << k;
+    EXPECT_EQ(a.component<Tracers>()->y(k), c.component<Tracers>()->y(k)) << k;
+    EXPECT_NE(a.component<Tracers>()->x(k), b.component<Tracers>()->x(k)) << k;  // they did move after the checkpoint
   }
-  for (std::size_t k = 0; k < a.markers()->points().size(); ++k) {
-    EXPECT_EQ(a.markers()->points()[k].x, c.markers()->points()[k].x) << k;
-    EXPECT_EQ(a.markers()->points()[k].y, c.markers()->points()[k].y) << k;
+  for (std::size_t k = 0; k < a.component<Markers>()->points().size(); ++k) {
+    EXPECT_EQ(a.component<Markers>()->points()[k].x, c.component<Markers>()->points()[k].x) << k;
+    EXPECT_EQ(a.component<Markers>()->points()[k].y, c.component<Markers>()->points()[k].y) << k;
   }
   std::filesystem::remove(path);
 }

@@ -15,9 +15,9 @@
 
 #include "solver/io/checkpoint_io.hpp"
 #include "solver/io/csv.hpp"
+#include "solver/model/component_kind.hpp"
 #include "solver/model/diagnostics.hpp"
 #include "solver/model/health.hpp"
-#include "solver/components/markers.hpp"
 #include "solver/model/probes.hpp"
 #include "solver/app/progress.hpp"
 #include "solver/model/simulation.hpp"
@@ -25,7 +25,6 @@
 #include "solver/app/step_landing.hpp"
 #include "solver/app/stop_signal.hpp"
 #include "solver/app/thread_governor.hpp"
-#include "solver/components/tracers.hpp"
 #include "solver/io/vtk.hpp"
 
 namespace refmap {
@@ -75,7 +74,7 @@ void solid_output_fields(const Simulation& sim, Field& phi, Field& xix, Field& x
 /// directory (and the frames nothing with write_vtk = false).
 class RunOutput {
  public:
-  RunOutput(Simulation& sim, const std::string& out_dir) : sim_(sim), dir_(out_dir) {
+  RunOutput(Simulation& sim, const std::string& out_dir) : sim_(sim), dir_(out_dir), files_(component_files(sim)) {
     if (dir_.empty()) return;
     const Config& cfg = sim_.config();
     const Grid& g = sim_.grid();
@@ -95,18 +94,14 @@ class RunOutput {
     }
     if (cfg.write_vtk)  // no .pvd without frames
       pvd_ = std::make_unique<PvdSeries>((fs::path(dir_) / (cfg.name + ".pvd")).string());
-    if (cfg.write_vtk && sim_.tracers())
-      tracers_csv_ = std::make_unique<CsvWriter>((fs::path(dir_) / "tracers.csv").string(), tracer_columns());
-    if (cfg.write_vtk && sim_.markers())
-      markers_csv_ = std::make_unique<CsvWriter>((fs::path(dir_) / "markers.csv").string(), marker_columns());
+    for (ComponentCsv& f : files_)
+      f.csv = std::make_unique<CsvWriter>((fs::path(dir_) / f.file.name).string(), f.file.columns);
   }
-
-  static std::vector<std::string> tracer_columns() { return {"frame", "t", "id", "x", "y"}; }
-  static std::vector<std::string> marker_columns() { return {"frame", "t", "solid", "id", "x", "y"}; }
 
   /// The outputs as they were when the checkpoint was written: diagnostics.csv cut back to
   /// its rows then, frames written after it removed, the .pvd series rewritten.
-  RunOutput(Simulation& sim, const std::string& out_dir, CheckpointReader& r) : sim_(sim), dir_(out_dir) {
+  RunOutput(Simulation& sim, const std::string& out_dir, CheckpointReader& r)
+      : sim_(sim), dir_(out_dir), files_(component_files(sim)) {
     frame_ = int(r.get_i64("run.frames"));
     const std::int64_t n = r.get_i64("run.pvd_entries");
     std::vector<std::pair<double, std::string>> entries;
@@ -118,14 +113,11 @@ class RunOutput {
     const long rows = long(r.get_i64("run.csv_rows"));
     const auto solids_bytes = std::size_t(r.get_i64("run.solids_bytes"));
     const long solids_rows = long(r.get_i64("run.solids_rows"));
-    // tracers.csv and markers.csv (only scenes with tracers / markers have the records)
-    std::int64_t point_csv[2][2] = {{0, 0}, {0, 0}};
-    const bool has_points[2] = {sim_.config().write_vtk && sim_.tracers(), sim_.config().write_vtk && sim_.markers()};
-    for (int m = 0; m < 2; ++m)
-      if (has_points[m]) {
-        point_csv[m][0] = r.get_i64(m == 0 ? "run.tracers_bytes" : "run.markers_bytes");
-        point_csv[m][1] = r.get_i64(m == 0 ? "run.tracers_rows" : "run.markers_rows");
-      }
+    // the components' files (only the scenes whose components have files hold the records)
+    for (ComponentCsv& f : files_) {
+      f.bytes = r.get_i64(record(f, "bytes"));
+      f.rows = r.get_i64(record(f, "rows"));
+    }
     if (!r.at_end()) throw CheckpointError("checkpoint " + r.path() + ": records left over at the end");
     if (dir_.empty()) return;
     // everything is checked before any file is touched: a checkpoint that cannot be
@@ -137,9 +129,9 @@ class RunOutput {
       if (size > 0 && (fs::file_size(f, ec) < size || ec))
         throw CheckpointError(f.string() + " is shorter than when the checkpoint " + r.path() +
                               " was written: the run cannot be continued");
-    for (int m = 0; m < 2; ++m) {
-      const fs::path f = fs::path(dir_) / (m == 0 ? "tracers.csv" : "markers.csv");
-      if (point_csv[m][0] > 0 && (fs::file_size(f, ec) < std::uintmax_t(point_csv[m][0]) || ec))
+    for (const ComponentCsv& c : files_) {
+      const fs::path f = fs::path(dir_) / c.file.name;
+      if (c.bytes > 0 && (fs::file_size(f, ec) < std::uintmax_t(c.bytes) || ec))
         throw CheckpointError(f.string() + " is shorter than when the checkpoint " + r.path() +
                               " was written: the run cannot be continued");
     }
@@ -161,12 +153,10 @@ class RunOutput {
       pvd_ = std::make_unique<PvdSeries>((fs::path(dir_) / (cfg.name + ".pvd")).string());
       pvd_->restore(entries);
     }
-    if (point_csv[0][0] > 0)
-      tracers_csv_ = std::make_unique<CsvWriter>(CsvWriter::resume((fs::path(dir_) / "tracers.csv").string(),
-                                                                   tracer_columns(), point_csv[0][0], point_csv[0][1]));
-    if (point_csv[1][0] > 0)
-      markers_csv_ = std::make_unique<CsvWriter>(CsvWriter::resume((fs::path(dir_) / "markers.csv").string(),
-                                                                   marker_columns(), point_csv[1][0], point_csv[1][1]));
+    for (ComponentCsv& f : files_)
+      if (f.bytes > 0)
+        f.csv = std::make_unique<CsvWriter>(CsvWriter::resume((fs::path(dir_) / f.file.name).string(), f.file.columns,
+                                                              std::size_t(f.bytes), long(f.rows)));
   }
 
   /// The run's own records of a checkpoint (after flushing diagnostics.csv).
@@ -183,13 +173,9 @@ class RunOutput {
     w.put_i64("run.csv_rows", csv_ ? csv_->rows() : 0);
     w.put_i64("run.solids_bytes", solids_csv_ ? std::int64_t(solids_csv_->bytes()) : 0);
     w.put_i64("run.solids_rows", solids_csv_ ? solids_csv_->rows() : 0);
-    if (sim_.config().write_vtk && sim_.tracers()) {
-      w.put_i64("run.tracers_bytes", tracers_csv_ ? std::int64_t(tracers_csv_->bytes()) : 0);
-      w.put_i64("run.tracers_rows", tracers_csv_ ? tracers_csv_->rows() : 0);
-    }
-    if (sim_.config().write_vtk && sim_.markers()) {
-      w.put_i64("run.markers_bytes", markers_csv_ ? std::int64_t(markers_csv_->bytes()) : 0);
-      w.put_i64("run.markers_rows", markers_csv_ ? markers_csv_->rows() : 0);
+    for (const ComponentCsv& f : files_) {
+      w.put_i64(record(f, "bytes"), f.csv ? std::int64_t(f.csv->bytes()) : 0);
+      w.put_i64(record(f, "rows"), f.csv ? f.csv->rows() : 0);
     }
   }
   const std::string& dir() const { return dir_; }
@@ -203,10 +189,12 @@ class RunOutput {
     std::vector<fs::path> stale;
     for (const auto& e : fs::directory_iterator(dir_, ec)) {
       const std::string f = e.path().filename().string();
-      const bool ours = (f.rfind("frame_", 0) == 0 && (e.path().extension() == ".vti" || f.ends_with(".vti.tmp"))) ||
-                        e.path().extension() == ".pvd" || f.ends_with(".pvd.tmp") ||
-                        (f.rfind("probe_", 0) == 0 && e.path().extension() == ".csv") || f == "diagnostics.csv" ||
-                        f == "solids.csv" || f == "tracers.csv" || f == "markers.csv" || f == "events.csv" || f == "timings.csv" || f.rfind("checkpoint.bin", 0) == 0;
+      bool ours = (f.rfind("frame_", 0) == 0 && (e.path().extension() == ".vti" || f.ends_with(".vti.tmp"))) ||
+                  e.path().extension() == ".pvd" || f.ends_with(".pvd.tmp") ||
+                  (f.rfind("probe_", 0) == 0 && e.path().extension() == ".csv") || f == "diagnostics.csv" ||
+                  f == "solids.csv" || f == "events.csv" || f == "timings.csv" || f.rfind("checkpoint.bin", 0) == 0;
+      for (const ComponentKind& k : component_kinds())  // the components' own files (Component::files)
+        ours = ours || std::find(k.files.begin(), k.files.end(), f) != k.files.end();
       if (ours && e.is_regular_file(ec)) stale.push_back(e.path());
     }
     for (const auto& p : stale) fs::remove(p, ec);
@@ -222,16 +210,18 @@ class RunOutput {
     std::snprintf(name, sizeof name, "frame_%05d.vti", frame_++);
     write_frame(name);
     pvd_->add(sim_.time(), name);
-    points(frame_ - 1);
+    component_rows(frame_ - 1);
   }
 
-  /// The rows of tracers.csv and markers.csv of frame `f` (the current state).
-  void points(int f) {
-    if (const Tracers* tr = sim_.tracers(); tr && tracers_csv_)
-      for (int k = 0; k < tr->size(); ++k) tracers_csv_->row({double(f), sim_.time(), double(k), tr->x(k), tr->y(k)});
-    if (const Markers* mk = sim_.markers(); mk && markers_csv_)
-      for (const Markers::Point& p : mk->points())
-        markers_csv_->row({double(f), sim_.time(), double(p.solid), double(p.id), p.x, p.y});
+  /// The rows of the components' files of frame `f` (the current state).
+  void component_rows(int f) {
+    std::vector<std::vector<double>> rows;
+    for (ComponentCsv& c : files_) {
+      if (!c.csv) continue;
+      rows.clear();
+      c.file.rows(sim_, f, rows);
+      for (const auto& row : rows) c.csv->row(row);
+    }
   }
 
   /// frame_failed.vti: the state a health check refused, so that the failure can be looked
@@ -292,29 +282,38 @@ class RunOutput {
   void flush() {
     if (csv_) csv_->flush();
     if (solids_csv_) solids_csv_->flush();
-    if (tracers_csv_) tracers_csv_->flush();
-    if (markers_csv_) markers_csv_->flush();
-  }
-
-  /// events.csv: the contact event log, one "time,solid,event,value,with" row per event.
-  void events(const std::vector<ContactEvent>& log) {
-    if (!enabled()) return;
-    const std::string path = (fs::path(dir_) / "events.csv").string();
-    std::FILE* f = std::fopen(path.c_str(), "w");
-    if (!f) throw std::runtime_error("cannot write " + path);
-    std::fprintf(f, "time,solid,event,value,with\n");
-    for (const ContactEvent& e : log)
-      std::fprintf(f, "%.10g,%d,%s,%.10g,%s\n", e.time, e.solid, e.event.c_str(), e.value, e.with.c_str());
-    std::fclose(f);
+    for (ComponentCsv& f : files_)
+      if (f.csv) f.csv->flush();
   }
 
  private:
+  /// A component's file (solver/model/component.hpp) and its writer (null without an
+  /// output directory); bytes and rows as a checkpoint recorded them (resume).
+  struct ComponentCsv {
+    ComponentFile file;
+    std::unique_ptr<CsvWriter> csv;
+    std::int64_t bytes = 0, rows = 0;
+  };
+  /// The components' files, in the order of the components and of their lists: written
+  /// only with VTK frames (their rows are written at the frames).
+  static std::vector<ComponentCsv> component_files(const Simulation& sim) {
+    std::vector<ComponentCsv> files;
+    if (!sim.config().write_vtk) return files;
+    for (const auto& c : sim.components())
+      for (ComponentFile& f : c->files()) files.push_back({std::move(f), nullptr});
+    return files;
+  }
+  /// The checkpoint record of a file's length: run.<stem>_bytes, run.<stem>_rows.
+  static std::string record(const ComponentCsv& f, const char* what) {
+    return "run." + fs::path(f.file.name).stem().string() + "_" + what;
+  }
+
   Simulation& sim_;
   std::string dir_;
   std::unique_ptr<CsvWriter> csv_;
   std::unique_ptr<CsvWriter> solids_csv_;  ///< only with solids
   std::unique_ptr<PvdSeries> pvd_;
-  std::unique_ptr<CsvWriter> tracers_csv_, markers_csv_;  ///< only with tracers / markers and VTK frames
+  std::vector<ComponentCsv> files_;  ///< the components' own files (only with VTK frames)
   int frame_ = 0;
 };
 
@@ -519,17 +518,15 @@ RunSummary run(Simulation& sim, const RunOptions& opt) {
     }
   }
   progress.finish();
-  try {  // the end of the run: the last row and frame (unless written), probes, events
+  try {  // the end of the run: the last row and frame (unless written), probes, the components' end
     if (!sum.failed) {
       if (!outputs[kRow].when.due(sim.steps(), sim.time())) out.row(last_dt, wall_seconds_since(wall0));
       if (!sum.signal) out.frame();
       out.probes();
     }
     out.flush();
-    if (sim.contact()) {
-      sim.finish_events();
-      out.events(sim.contact()->events());
-    }
+    // the components' end (the contact's events.csv: solver/components/contact_component.hpp)
+    for (const auto& c : sim.components()) c->finish(sim, out.enabled() ? out.dir() : std::string());
   } catch (const std::runtime_error& e) {
     if (!sum.failed) fail(e.what() + std::string(" (writing the final output)"));
   }

@@ -121,6 +121,19 @@ void Markers::at(StepPoint p, Simulation& sim, double) {
 
 namespace {
 
+constexpr const char* kMarkersFile = "markers.csv";
+
+}  // namespace
+
+std::vector<ComponentFile> Markers::files() const {
+  return {{kMarkersFile, {"frame", "t", "solid", "id", "x", "y"},
+           [this](const Simulation& sim, int frame, std::vector<std::vector<double>>& rows) {
+             for (const Point& p : pts_) rows.push_back({double(frame), sim.time(), double(p.solid), double(p.id), p.x, p.y});
+           }}};
+}
+
+namespace {
+
 using namespace toml_text;
 
 /// The `markers` and `boundary_markers` of every [[solid]] (null: no solid has any). Each
@@ -176,6 +189,7 @@ ComponentKind markers_kind() {
   };
   k.after = "solid.clamp";
   k.parse = parse_markers;
+  k.files = {kMarkersFile};
   k.make = make_markers;
   return k;
 }

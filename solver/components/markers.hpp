@@ -64,6 +64,8 @@ class Markers : public Component {
   const char* name() const override { return "markers"; }
   void register_state(StateRegistry& reg) override;
   void at(StepPoint p, Simulation& sim, double dt) override;
+  /// markers.csv: frame, t, solid, id, x, y (one row per marker and frame).
+  std::vector<ComponentFile> files() const override;
 
  private:
   Grid g_;

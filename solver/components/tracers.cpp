@@ -113,6 +113,19 @@ void Tracers::at(StepPoint p, Simulation& sim, double dt) {
 
 namespace {
 
+constexpr const char* kTracersFile = "tracers.csv";
+
+}  // namespace
+
+std::vector<ComponentFile> Tracers::files() const {
+  return {{kTracersFile, {"frame", "t", "id", "x", "y"},
+           [this](const Simulation& sim, int frame, std::vector<std::vector<double>>& rows) {
+             for (int k = 0; k < n_; ++k) rows.push_back({double(frame), sim.time(), double(k), x(k), y(k)});
+           }}};
+}
+
+namespace {
+
 using namespace toml_text;
 
 /// The [[tracers]] tables of the scene into their seeds (null: none).
@@ -190,6 +203,7 @@ ComponentKind tracers_kind() {
       shown_default(integer("tracers", "nx", {}, in(1, false, 100000, false), "tracers along x in `box`"), "—"),
       shown_default(integer("tracers", "ny", {}, in(1, false, 100000, false), "tracers along y in `box`"), "—"),
   };
+  k.files = {kTracersFile};
   k.parse = parse_tracers;
   k.make = make_tracers;
   return k;

@@ -63,6 +63,8 @@ class Tracers : public Component {
   const char* name() const override { return "tracers"; }
   void register_state(StateRegistry& reg) override;
   void at(StepPoint p, Simulation& sim, double dt) override;
+  /// tracers.csv: frame, t, id, x, y (one row per tracer and frame).
+  std::vector<ComponentFile> files() const override;
 
  private:
   double wrap_x(double x) const;

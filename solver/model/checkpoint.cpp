@@ -46,16 +46,8 @@ void Simulation::register_solids_state() {
         tag, [&s, tag](CheckpointWriter& w) { s.save_state(w, tag); },
         [&s, tag](CheckpointReader& r) { s.load_state(r, tag); });
   }
-  state_.add_record(
-      "sim.contact", [this](CheckpointWriter& w) { w.put_i64("sim.contact", contact_ ? 1 : 0); },
-      [this](CheckpointReader& r) {
-        if (r.get_i64("sim.contact") != (contact_ ? 1 : 0))
-          throw CheckpointError("checkpoint " + r.path() + ": contact state does not match the scene");
-      });
-  if (contact_)
-    state_.add_record(
-        "contact", [this](CheckpointWriter& w) { contact_->save_state(w); },
-        [this](CheckpointReader& r) { contact_->load_state(r); });
+  // the contact tracker's records are the contact component's
+  // (solver/components/contact_component.hpp)
   if (bodies_)  // rigid bodies' poses (solver/model/rigid_body.hpp)
     state_.add_record(
         "bodies", [this](CheckpointWriter& w) { bodies_->save_state(w); },

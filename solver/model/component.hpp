@@ -7,11 +7,17 @@
 //  * is called at fixed, named points of Simulation::step (StepPoint) - the points stay in
 //    the step's order whatever the order in which components were added; at one point the
 //    components are called in the order they were added,
-//  * may add columns to diagnostics.csv (the values of the current state) and cell fields
-//    to the VTK frames.
+//  * may add columns to diagnostics.csv (the values of the current state) and to
+//    solids.csv (one value per solid), each after the built-in column it names or at the
+//    end, cell fields to the VTK frames and CSV files of its own (files(): the run loop
+//    writes them at every VTK frame, keeps them across a checkpoint and names none of
+//    them),
+//  * is told when the run ends (finish: close what is still open, write the files of the
+//    run's end).
 // A scene's components are made by their kinds (solver/model/component_kind.hpp: keys, parser,
 // factory), so adding one takes its own files and one registration - or add_component()
 // from outside, as the tests do.
+#include <functional>
 #include <limits>
 #include <string>
 #include <utility>
@@ -32,8 +38,35 @@ enum class StepPoint {
   Advected,
   /// After eq. (5.2): u(), v() hold u**, solid_stress_*() the stress the step used.
   Stressed,
+  /// After the Poisson setup of the new density (the face coefficients beta_f = 1/rho_f of
+  /// the solids at xi^{n+1}), before the face accelerations G_f of eq. (5.3) are
+  /// assembled: face forces of the new configuration are computed here (contact).
+  Forces,
+  /// Each time G_f is assembled (Simulation::face_accel_x_mut): with the pressure gradient
+  /// and gravity in it, before the rigid bodies' cut faces. Two or three times a step:
+  /// for the predictor (step 5, eq. 5.3), for the cell velocities (step 9, eq. 5.7), and
+  /// with time.splitting = "increment" at the step's start (G_f^n, inside the advection).
+  /// A face force F_f enters as G_f -= beta_f F_f. Not timed on its own: its time is
+  /// booked in the phase that assembles G_f.
+  FaceAccelerations,
   /// After the step (the state is that of time t + dt, Simulation::time() included).
   End,
+};
+
+/// A CSV file of a component's own in the run's output directory. The run loop
+/// (solver/app/run.cpp) writes it only with VTK frames (output.vtk): it creates it with
+/// its column header, appends the rows of the current state at every frame (the first,
+/// the scheduled ones, the last), records its length in every checkpoint (a resumed run
+/// cuts it back to the rows of the checkpoint and continues it) and removes an earlier
+/// run's copy from a reused directory (the file names of every kind:
+/// ComponentKind::files, solver/model/component_kind.hpp).
+struct ComponentFile {
+  /// Its name in the output directory, "<stem>.csv"; its checkpoint records are
+  /// run.<stem>_bytes and run.<stem>_rows.
+  std::string name;
+  std::vector<std::string> columns;
+  /// Appends the rows of frame `frame` (the index of frame_NNNNN.vti) for the current state.
+  std::function<void(const Simulation&, int frame, std::vector<std::vector<double>>& rows)> rows;
 };
 
 class Component {
@@ -51,9 +84,24 @@ class Component {
   /// Its diagnostics.csv columns (fixed for the run) and their values for the current state.
   virtual std::vector<std::string> columns() const { return {}; }
   virtual void values(const Simulation&, std::vector<double>& /*out*/) const {}
+  /// Where they go: right after the built-in column of this name (solver/model/diagnostics.cpp),
+  /// or (null, or a column this run does not write) after every built-in column, in the
+  /// order the components were added.
+  virtual const char* columns_after() const { return nullptr; }
+  /// Its solids.csv columns (fixed for the run), the values of solid k for the current
+  /// state, and where they go (as columns_after, among the per-solid columns).
+  virtual std::vector<std::string> solid_columns() const { return {}; }
+  virtual void solid_values(const Simulation&, int /*k*/, std::vector<double>& /*out*/) const {}
+  virtual const char* solid_columns_after() const { return nullptr; }
   /// Its cell fields (name, nx x ny field) written into every VTK frame after the built-in
   /// ones (solver/app/run.cpp).
   virtual std::vector<std::pair<std::string, const Field*>> frame_fields() const { return {}; }
+  /// Its own output files (ComponentFile), in the order of their checkpoint records.
+  virtual std::vector<ComponentFile> files() const { return {}; }
+  /// At the end of a run (solver/app/run.cpp: also after a failure or a signal), after the
+  /// last output: closes what is still open at the current time and writes the files of
+  /// the run's end into `out_dir` ("": no output directory, nothing to write).
+  virtual void finish(Simulation&, const std::string& /*out_dir*/) {}
 };
 
 }  // namespace refmap

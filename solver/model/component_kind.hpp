@@ -38,6 +38,9 @@ struct ComponentKind {
     std::string after;
   };
   std::vector<Table> tables;
+  /// The names of the output files its components write (Component::files): a reused
+  /// output directory is cleaned of them whether or not the new run's scene uses the kind.
+  std::vector<std::string> files;
   /// Reads its keys: `top` is the scene's top level (TomlTable::sub reads a table of it,
   /// with the same file, overrides and key catalogue), `cfg` the core's options already
   /// parsed (the grid, the boundaries, the solids). Returns its options, or null when the

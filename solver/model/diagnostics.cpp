@@ -1,5 +1,7 @@
 #include "solver/model/diagnostics.hpp"
 
+#include <algorithm>
+#include <cstring>
 #include <limits>
 
 #include "solver/components/control_volume_forces.hpp"
@@ -36,7 +38,6 @@ const Column kColumns[] = {
     {"wall_time",          false, [](const RowState& r) { return r.wall_s; }},
     {"elastic_energy",     true,  [](const RowState& r) { return r.sim.elastic_energy(); }},
     {"total_energy",       true,  [](const RowState& r) { return r.kinetic_energy + r.sim.elastic_energy(); }},
-    {"contact_energy",     true,  [](const RowState& r) { return r.sim.contact()->energy(); }},
 };
 
 /// The columns of solids.csv after step, time and solid: one row per solid and output step.
@@ -52,8 +53,6 @@ const SolidColumn kSolidColumns[] = {
     {"u",         [](const RowState& r, int k) { return r.solid[k].u; }},
     {"v",         [](const RowState& r, int k) { return r.solid[k].v; }},
     {"sigma_max", [](const RowState& r, int k) { return r.solid[k].sigma_max; }},
-    {"gap_solid", [](const RowState& r, int k) { return r.sim.contact()->gap_solid(k); }},
-    {"gap_wall",  [](const RowState& r, int k) { return r.sim.contact()->gap_wall(k); }},
 };
 
 /// The force the columns below report (output.body_force): a rigid body's direct forcing,
@@ -110,33 +109,65 @@ bool any_force(const Simulation& sim) {
   return false;
 }
 
+/// The parts of a row in order: every built-in column (as `builtin` takes them), each
+/// followed by the components whose `after` names it, then the components placed after
+/// none (solver/model/component.hpp: columns_after, solid_columns_after), in the order added.
+template <class Builtin, class Comp>
+void in_row_order(const Simulation& sim, const std::vector<const char*>& builtin_names, Builtin&& builtin,
+                  const char* (Component::*after)() const, Comp&& comp) {
+  std::vector<const Component*> placed;
+  for (std::size_t n = 0; n < builtin_names.size(); ++n) {
+    builtin(n);
+    for (const auto& c : sim.components())
+      if (const char* a = ((*c).*after)(); a && std::strcmp(a, builtin_names[n]) == 0) {
+        comp(*c);
+        placed.push_back(c.get());
+      }
+  }
+  for (const auto& c : sim.components())
+    if (std::find(placed.begin(), placed.end(), c.get()) == placed.end()) comp(*c);
+}
+
+/// The built-in diagnostics.csv columns of this run, in order.
+std::vector<const Column*> global_columns(const Simulation& sim) {
+  const bool solids = !sim.solids().empty();
+  std::vector<const Column*> cols;
+  for (const Column& col : kColumns)
+    if (!col.needs_solids || solids) cols.push_back(&col);
+  if (sim.implicit_velocity())
+    for (const Column& col : kImplicitColumns) cols.push_back(&col);
+  if (sim.config().solid_picard > 0)
+    for (const Column& col : kPicardColumns) cols.push_back(&col);
+  return cols;
+}
+
+template <class C>
+std::vector<const char*> names_of(const std::vector<const C*>& cols) {
+  std::vector<const char*> n;
+  for (const C* c : cols) n.push_back(c->name);
+  return n;
+}
+
 }  // namespace
 
 std::vector<std::string> diagnostic_columns(const Simulation& sim) {
-  const int nsolids = int(sim.solids().size());
+  const auto cols = global_columns(sim);
   std::vector<std::string> c;
-  for (const Column& col : kColumns)
-    if (!col.needs_solids || nsolids > 0) c.push_back(col.name);
-  if (sim.implicit_velocity())
-    for (const Column& col : kImplicitColumns) c.push_back(col.name);
-  if (sim.config().solid_picard > 0)
-    for (const Column& col : kPicardColumns) c.push_back(col.name);
-  for (const auto& comp : sim.components())  // solver/model/component.hpp, in the order added
-    for (const std::string& name : comp->columns()) c.push_back(name);
+  in_row_order(
+      sim, names_of(cols), [&](std::size_t n) { c.push_back(cols[n]->name); }, &Component::columns_after,
+      [&](const Component& comp) {
+        for (const std::string& name : comp.columns()) c.push_back(name);
+      });
   return c;
 }
 
 std::vector<double> diagnostic_values(const Simulation& sim, double last_dt, double wall_s) {
-  const int nsolids = int(sim.solids().size());
+  const auto cols = global_columns(sim);
   const RowState r{sim, last_dt, wall_s, sim.kinetic_energy(), sim.solid_diagnostics()};
   std::vector<double> v;
-  for (const Column& col : kColumns)
-    if (!col.needs_solids || nsolids > 0) v.push_back(col.value(r));
-  if (sim.implicit_velocity())
-    for (const Column& col : kImplicitColumns) v.push_back(col.value(r));
-  if (sim.config().solid_picard > 0)
-    for (const Column& col : kPicardColumns) v.push_back(col.value(r));
-  for (const auto& comp : sim.components()) comp->values(sim, v);
+  in_row_order(
+      sim, names_of(cols), [&](std::size_t n) { v.push_back(cols[n]->value(r)); }, &Component::columns_after,
+      [&](const Component& comp) { comp.values(sim, v); });
   return v;
 }
 
@@ -144,14 +175,42 @@ std::vector<double> diagnostic_values(const Simulation& sim, double last_dt, dou
 
 namespace refmap {
 
+namespace {
+
+/// The built-in per-solid columns of this run, in order, and whether each is written for
+/// every solid (else only for the solids with a force, or the rigid bodies).
+struct SolidPart {
+  const SolidColumn* col;
+  enum { All, Force, Body } rows;
+};
+
+std::vector<SolidPart> solid_parts(const Simulation& sim) {
+  std::vector<SolidPart> parts;
+  for (const SolidColumn& col : kSolidColumns) parts.push_back({&col, SolidPart::All});
+  if (any_force(sim))
+    for (const SolidColumn& col : kForceColumns) parts.push_back({&col, SolidPart::Force});
+  if (any_body(sim))
+    for (const SolidColumn& col : kBodyColumns) parts.push_back({&col, SolidPart::Body});
+  return parts;
+}
+
+std::vector<const char*> names_of(const std::vector<SolidPart>& parts) {
+  std::vector<const char*> n;
+  for (const SolidPart& p : parts) n.push_back(p.col->name);
+  return n;
+}
+
+}  // namespace
+
 std::vector<std::string> solid_columns(const Simulation& sim) {
   if (sim.solids().empty()) return {};
   std::vector<std::string> c{"step", "time", "solid"};
-  for (const SolidColumn& col : kSolidColumns) c.push_back(col.name);
-  if (any_force(sim))
-    for (const SolidColumn& col : kForceColumns) c.push_back(col.name);
-  if (any_body(sim))
-    for (const SolidColumn& col : kBodyColumns) c.push_back(col.name);
+  const auto parts = solid_parts(sim);
+  in_row_order(
+      sim, names_of(parts), [&](std::size_t n) { c.push_back(parts[n].col->name); }, &Component::solid_columns_after,
+      [&](const Component& comp) {
+        for (const std::string& name : comp.solid_columns()) c.push_back(name);
+      });
   return c;
 }
 
@@ -159,17 +218,22 @@ std::vector<std::vector<double>> solid_values(const Simulation& sim) {
   const int nsolids = int(sim.solids().size());
   if (nsolids == 0) return {};
   const RowState r{sim, 0.0, 0.0, 0.0, sim.solid_diagnostics()};  // no global column is read
-  const bool forces = any_force(sim), bodies = any_body(sim);
+  const auto parts = solid_parts(sim);
+  const auto names = names_of(parts);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::vector<double>> rows(static_cast<std::size_t>(nsolids));
   for (int k = 0; k < nsolids; ++k) {
     std::vector<double>& v = rows[std::size_t(k)];
     v = {double(sim.steps()), sim.time(), double(k)};
-    for (const SolidColumn& col : kSolidColumns) v.push_back(col.value(r, k));
-    if (forces)
-      for (const SolidColumn& col : kForceColumns) v.push_back(has_force(sim, k) ? col.value(r, k) : nan);
-    if (bodies)
-      for (const SolidColumn& col : kBodyColumns) v.push_back(is_body(sim, k) ? col.value(r, k) : nan);
+    const bool force = has_force(sim, k), body = is_body(sim, k);
+    in_row_order(
+        sim, names,
+        [&](std::size_t n) {
+          const SolidPart& p = parts[n];
+          const bool written = p.rows == SolidPart::All || (p.rows == SolidPart::Force ? force : body);
+          v.push_back(written ? p.col->value(r, k) : nan);
+        },
+        &Component::solid_columns_after, [&](const Component& comp) { comp.solid_values(sim, k, v); });
   }
   return rows;
 }

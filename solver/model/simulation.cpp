@@ -16,11 +16,10 @@
 #include "kernels/viscous.hpp"
 #include "solver/model/boundary.hpp"
 #include "solver/model/component_kind.hpp"
+#include "solver/components/contact_component.hpp"
 #include "solver/components/control_volume_forces.hpp"
 #include "solver/io/expression.hpp"
-#include "solver/components/markers.hpp"
 #include "solver/model/time_step_limits.hpp"
-#include "solver/components/tracers.hpp"
 
 namespace refmap {
 
@@ -62,25 +61,6 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
   if (cfg_.solid_time == SolidStressTime::UpperConvected)
     for (Field* f : {&qxx_, &qxy_, &qyy_}) f->resize(nx, ny, ng);
   initialise();
-  if (!solids_.empty()) {
-    // velocity scale of the contact pressure (solver/model/contact.hpp): the largest initial
-    // speed on the grid and the free-fall speed over the domain along g
-    double umax = 0.0;
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) umax = std::max(umax, std::hypot(u_(i, j), v_(i, j)));
-    const double gmag = std::hypot(cfg_.gx, cfg_.gy);
-    if (gmag > 0.0) {
-      const double L = (std::abs(cfg_.gx) * cfg_.grid.lx() + std::abs(cfg_.gy) * cfg_.grid.ly()) / gmag;
-      umax = std::max(umax, std::sqrt(2.0 * gmag * L));
-    }
-    contact_ = std::make_unique<Contact>(cfg_, umax);
-    if (contact_->force_enabled()) {
-      cfx_.resize(nx + 1, ny, ng);
-      cfy_.resize(nx, ny + 1, ng);
-    }
-    contact_->observe(t_, solids_, solid_diagnostics());
-    solid_diag_step_ = -1;  // u_mut()/v_mut() may still change the initial state
-  }
   register_state();
   add_components();
 }
@@ -92,8 +72,8 @@ void Simulation::register_state() {
   const std::pair<const char*, Field*> fields[] = {
       {"u", &u_},     {"v", &v_},       {"p", &p_},     {"rho", &rho_}, {"rho_old", &rho_old_},
       {"mu", &mu_},   {"uf", &uf_},     {"vf", &vf_},   {"dp", &dp_},   {"gxf", &gxf_},
-      {"gyf", &gyf_}, {"sxx", &sxx_},   {"sxy", &sxy_}, {"syy", &syy_}, {"cfx", &cfx_},
-      {"cfy", &cfy_}, {"beta_x", &beta_x_}, {"beta_y", &beta_y_}};
+      {"gyf", &gyf_}, {"sxx", &sxx_},   {"sxy", &sxy_}, {"syy", &syy_}, {"beta_x", &beta_x_},
+      {"beta_y", &beta_y_}};
   for (const auto& [name, f] : fields) state_.add_field(std::string("sim.") + name, *f);
   state_.add_value("sim.elastic_energy", elastic_energy_);
   state_.add_count("sim.poisson_iterations", last_stats_.iterations);
@@ -103,10 +83,15 @@ void Simulation::register_state() {
 }
 
 void Simulation::add_components() {
+  // contact first whenever there are solids: its hooks come first at each step point (the
+  // gaps are observed at the step's end before any other component moves anything) and
+  // its time-step limit reads the flow's limit alone (flow_limit)
+  if (!solids_.empty()) add_component(std::make_unique<ContactComponent>(*this));
   // the scene's components, each made by its kind (solver/model/component_kind.hpp) in
   // registration order, which is the order of their hooks at one step point
   for (const auto& [kind, options] : cfg_.components)
     if (auto c = component_kind(kind).make(*options, *this)) add_component(std::move(c));
+  solid_diag_step_ = -1;  // u_mut()/v_mut() may still change the initial state
 }
 
 void Simulation::add_component(std::unique_ptr<Component> c) {
@@ -114,7 +99,11 @@ void Simulation::add_component(std::unique_ptr<Component> c) {
   components_.push_back(std::move(c));
 }
 
-void Simulation::call_components(StepPoint p, double dt) {
+void Simulation::call_components(StepPoint p, double dt, bool timed) {
+  if (!timed) {
+    for (const auto& c : components_) c->at(p, *this, dt);
+    return;
+  }
   for (const auto& c : components_) {
     ScopedPhase ph(timers_, c->name());
     c->at(p, *this, dt);
@@ -142,9 +131,11 @@ void Simulation::set_stage_probe(std::function<void(Stage, double dt)> probe) {
   add_component(std::make_unique<StageProbe>(std::move(probe)));
 }
 
-const Tracers* Simulation::tracers() const { return component<Tracers>(); }
 const ControlVolumeForces* Simulation::control_volume_forces() const { return component<ControlVolumeForces>(); }
-const Markers* Simulation::markers() const { return component<Markers>(); }
+const Contact* Simulation::contact() const {
+  const ContactComponent* c = component<ContactComponent>();
+  return c ? &c->contact() : nullptr;
+}
 
 namespace {
 
@@ -393,7 +384,7 @@ double Simulation::stable_dt() const {
   if (accel > 0.0) {
     // with gravity, the speed at the step's end, umax + a dt, in the Courant number:
     // dt (umax + a dt) <= cfl dx, so a step from rest is bounded too (cfl dx / umax is
-    // infinite there; the contact spring's limit used to cover that, see below)
+    // infinite there; the contact spring's limit used to cover that: the contact component's max_dt)
     const double c = cfg_.cfl * g.dx;
     dt = std::min(dt, 2.0 * c / (umax + std::sqrt(umax * umax + 4.0 * accel * c)));
   } else if (umax > 0.0) {
@@ -413,52 +404,10 @@ double Simulation::stable_dt() const {
     for (const auto& s : solids_) dt = std::min(dt, s->min_dt());
   else if (cfg_.solid_implicit_cfl > 0.0)  // the implicit stress's own cap (docs/implicit.md)
     for (const auto& s : solids_) dt = std::min(dt, s->min_dt(cfg_.solid_implicit_cfl));
-  if (contact_ && contact_->force_enabled()) {
-    // the force acts in the layer -2 dx < phi < 0 of a solid, where the blended density is
-    // at least the mean of the solid's and the fluid's
-    double rho_min = 1e300;
-    for (const auto& s : solids_) rho_min = std::min(rho_min, 0.5 * (s->spec().density + cfg_.rho_f));
-    // the spring only acts on gaps below its range: its limit (dt ~ 0.1 dx / U) is needed
-    // only in a step that can bring a surface into range (solver/model/contact.hpp)
-    const double dt_contact = contact_->min_dt(rho_min);
-    if (dt > dt_contact && !contact_->clear_of_contact(umax, dt)) dt = dt_contact;
-  }
+  // the components' limits (the contact spring's: solver/components/contact_component.hpp)
+  flow_limit_ = {umax, dt};
   for (const auto& c : components_) dt = std::min(dt, c->max_dt(*this));
   return dt;
-}
-
-void Simulation::add_contact_face_accel() {
-  // G_f -= beta_f F_f: the contact force per unit volume on each face, over the face density
-  // nothing to add when no face got a contact force (G_f - beta_f * (+0) is G_f, bit for bit)
-  if (!(contact_ && contact_->force_enabled()) || !contact_force_written_) return;
-  const Grid& g = cfg_.grid;
-  // the boundary faces of a direction: a wall face carries no normal velocity (nothing to
-  // add); a periodic direction's faces 0 and n are one face
-  bool x_seam = false, y_seam = false;
-  switch (sides_[Left]) {
-    case FaceKind::Wall:
-    case FaceKind::Inflow:
-    case FaceKind::Outflow: break;  // no contact force on an open face (solver/model/contact.cpp)
-    case FaceKind::Periodic: x_seam = true; break;
-  }
-  switch (sides_[Bottom]) {
-    case FaceKind::Wall:
-    case FaceKind::Inflow:
-    case FaceKind::Outflow: break;
-    case FaceKind::Periodic: y_seam = true; break;
-  }
-  parallel_rows(0, g.ny, g.nx, [&](int j) {
-    for (int i = 1; i < g.nx; ++i) gxf_(i, j) -= beta_x_(i, j) * cfx_(i, j);
-    if (x_seam) {
-      gxf_(0, j) -= beta_x_(0, j) * cfx_(0, j);
-      gxf_(g.nx, j) = gxf_(0, j);
-    }
-  });
-  parallel_rows(0, g.ny + 1, g.nx, [&](int j) {
-    if ((j == 0 || j == g.ny) && !y_seam) return;
-    const int jj = j == g.ny ? 0 : j;
-    for (int i = 0; i < g.nx; ++i) gyf_(i, j) -= beta_y_(i, jj) * cfy_(i, jj);
-  });
 }
 
 double Simulation::step(double dt) {
@@ -487,15 +436,14 @@ double Simulation::step_once(double dt) {
   if (increment_) end_substeps(dt);      // time.splitting = "increment": u += dt G_c^n
   call_components(StepPoint::Stressed, dt);
   if (!solids_.empty()) setup_poisson();
-  if (contact_ && contact_->force_enabled()) compute_contact_force();
-  face_accelerations();                  // step 5's G_f, eq. (5.3)
+  call_components(StepPoint::Forces, dt);  // face forces of the new configuration (contact)
+  face_accelerations(dt);                // step 5's G_f, eq. (5.3)
   if (bodies_) force_bodies(dt);         // rigid bodies' velocity (solver/model/rigid_body.hpp)
   predict_face_velocities(dt);           // step 5
   solve_pressure();                      // step 6
   project(dt);                           // steps 7-9
   t_ += dt;
   ++nstep_;
-  if (contact_) observe_contact();
   return dt;
 }
 
@@ -508,7 +456,6 @@ double Simulation::step_prescribed(double dt) {
     ScopedPhase ph(timers_, "prescribed flow");
     impose_prescribed_velocity(t_);
   }
-  if (contact_) observe_contact();
   return dt;
 }
 
@@ -643,7 +590,7 @@ void Simulation::begin_substeps(double dt) {
   fill_scalar_ghosts(p_, cfg_.bc);
   face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), nx, ny, g.dx, cfg_.gx,
              cfg_.gy, cfg_.rho_f, sides_);
-  add_contact_face_accel();
+  call_components(StepPoint::FaceAccelerations, dt, false);  // the contact force
   if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);
   bool viscous = cfg_.mu_f > 0.0;
   for (const auto& s : solids_) viscous = viscous || s->spec().viscosity > 0.0;
@@ -720,20 +667,6 @@ void Simulation::setup_poisson() {
   build_poisson_coefficients();
 }
 
-void Simulation::compute_contact_force() {
-  // contact force on the faces of the new configuration (solver/model/contact.hpp), applied
-  // with the pressure gradient and gravity in the balanced-force face accelerations
-  ScopedPhase ph(timers_, "contact");
-  // the force is zero away from the solids' contact layers, i.e. everywhere in most steps:
-  // the fields are cleared only after a step that wrote into them (two full passes over
-  // memory per step otherwise, most of this phase on large grids)
-  if (contact_force_written_) {
-    parallel_fill(cfx_.raw(), cfx_.raw_size(), 0.0);
-    parallel_fill(cfy_.raw(), cfy_.raw_size(), 0.0);
-  }
-  contact_force_written_ = contact_->add_force(solids_, cfx_, cfy_);
-}
-
 void Simulation::force_bodies(double dt) {
   // with the face accelerations the predictor will subtract (face_accelerations, this
   // step): the forcing aims at u_body + dt G_c so that the predicted face velocities
@@ -742,7 +675,7 @@ void Simulation::force_bodies(double dt) {
   bodies_->force(solids_, u_, v_, rho_, gxf_, gyf_, p_, cfg_.grid, dt);
 }
 
-void Simulation::face_accelerations() {
+void Simulation::face_accelerations(double dt) {
   // eq. (5.3)'s G_f: old pressure gradient, gravity and contact force on the faces; read by
   // the bodies' forcing and the predictor. Booked with the predictor's phase (no call of
   // its own, so the phase still counts one call per step)
@@ -751,7 +684,7 @@ void Simulation::face_accelerations() {
   fill_scalar_ghosts(p_, cfg_.bc);
   face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
              g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, sides_);
-  add_contact_face_accel();
+  call_components(StepPoint::FaceAccelerations, dt, false);  // the contact force
   // forcing = "sharp": G_f of the cut faces (with beta = 0 there face_accel leaves -g)
   if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);
   timers_.add("face velocities", std::chrono::duration<double>(PhaseTimers::clock::now() - t0).count(), 0);
@@ -811,15 +744,10 @@ void Simulation::project(double dt) {
   // step 9, eq. (5.7): cell velocities with the new pressure
   face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
              g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, sides_);
-  add_contact_face_accel();
+  call_components(StepPoint::FaceAccelerations, dt, false);  // the contact force
   if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);
   correct_cell_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny, dt);
   apply_velocity_bc(u_, v_, t_ + dt);
-}
-
-void Simulation::observe_contact() {
-  ScopedPhase ph(timers_, "contact");
-  contact_->observe(t_, solids_, solid_diagnostics());
 }
 
 Field Simulation::named_field(const std::string& name) const {

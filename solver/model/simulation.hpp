@@ -10,8 +10,8 @@
 
 #include "solver/model/component.hpp"
 #include "solver/model/config.hpp"
-#include "solver/model/contact.hpp"
 #include "solver/model/implicit_step.hpp"
+#include "kernels/boundary_kind.hpp"
 #include "core/field.hpp"
 #include "core/grid.hpp"
 #include "solver/pressure/poisson.hpp"
@@ -24,9 +24,8 @@ namespace refmap {
 
 class CheckpointWriter;
 class CheckpointReader;
-class Tracers;
-class Markers;
 class ControlVolumeForces;
+class Contact;
 
 class Simulation {
  public:
@@ -37,8 +36,16 @@ class Simulation {
   /// Returns the dt taken.
   double step(double dt = 0.0);
 
-  /// The stability-limited time step of section 4 (advective, viscous, solid shear wave).
+  /// The stability-limited time step of section 4 (advective, viscous, solid shear wave),
+  /// then every component's max_dt.
   double stable_dt() const;
+  /// The flow's own part of the last stable_dt(): its fastest speed (|u| + |v|)max (with
+  /// moving walls and inflow) and the step its limits allow before the components'
+  /// (the contact limit depends on both: solver/components/contact_component.hpp).
+  struct FlowLimit {
+    double speed = 0.0, dt = 0.0;
+  };
+  const FlowLimit& flow_limit() const { return flow_limit_; }
 
   // state
   const Config& config() const { return cfg_; }
@@ -53,10 +60,6 @@ class Simulation {
   const Field& vf() const { return vf_; }  ///< y-face normal velocity, nx x (ny+1)
   Field& u_mut() { ke_step_ = -1; return u_; }
   Field& v_mut() { ke_step_ = -1; return v_; }
-
-  /// Passive fluid tracers and solid material points (null when the scene has none).
-  const Tracers* tracers() const;
-  const Markers* markers() const;
 
   // components (solver/model/component.hpp)
   /// Attaches a component: its state joins the checkpoint, its hooks the step, its columns
@@ -76,6 +79,14 @@ class Simulation {
   /// The solids, for components that change them between steps (actuation).
   std::vector<std::unique_ptr<Solid>>& solids_mut() { solid_diag_step_ = -1; return solids_; }
 
+  /// For the components at StepPoint::FaceAccelerations: the face accelerations G_f
+  /// being assembled, the face coefficients beta_f = 1/rho_f and the sides.
+  Field& face_accel_x_mut() { return gxf_; }
+  Field& face_accel_y_mut() { return gyf_; }
+  const Field& beta_x() const { return beta_x_; }
+  const Field& beta_y() const { return beta_y_; }
+  const Sides& sides() const { return sides_; }
+
   /// Cell field by probe/output name: u, v, p, density, speed, vorticity (ghosts filled).
   Field named_field(const std::string& name) const;
 
@@ -86,14 +97,9 @@ class Simulation {
   const Field& solid_stress_xx() const { return sxx_; }
   const Field& solid_stress_xy() const { return sxy_; }
   const Field& solid_stress_yy() const { return syy_; }
-  /// Closes the contact event log at the current time (restitution of a rebound still
-  /// being tracked); run() (solver/app/run.hpp) calls it at the end.
-  void finish_events() { if (contact_) contact_->finish(t_); }
-  /// Contact model and gap/event tracker (null without solids).
-  const Contact* contact() const { return contact_.get(); }
-  /// The contact force density of the last step on x- and y-faces (empty without contact).
-  const Field& contact_force_x() const { return cfx_; }
-  const Field& contact_force_y() const { return cfy_; }
+  /// Contact model and gap/event tracker of the contact component
+  /// (solver/components/contact_component.hpp; null without solids).
+  const Contact* contact() const;
   /// Rigid bodies' poses and loads (solver/model/rigid_body.hpp; null without a rigid body).
   const RigidBodies* bodies() const { return bodies_.get(); }
   /// Bodies' forces from the fluid's momentum balance (output.body_force = "control_volume";
@@ -145,13 +151,15 @@ class Simulation {
   void initialise();
   /// The flow's and the solids' records of state_ (the components add theirs).
   void register_state();
-  /// The solids', the contact tracker's and the rigid bodies' records (solver/model/checkpoint.cpp).
+  /// The solids' and the rigid bodies' records (solver/model/checkpoint.cpp).
   void register_solids_state();
-  /// The scene's components (Config::components, each made by its kind:
+  /// The components: contact with solids (solver/components/contact_component.hpp), then
+  /// the scene's (Config::components, each made by its kind:
   /// solver/model/component_kind.hpp), in the order of their hooks.
   void add_components();
-  /// Calls every component's hook at point p, timed under the component's name.
-  void call_components(StepPoint p, double dt);
+  /// Calls every component's hook at point p, timed under the component's name (timed =
+  /// false: inside a phase that books the time).
+  void call_components(StepPoint p, double dt, bool timed = true);
   /// step() without the components' hooks (which step() calls around it).
   double step_state(double dt);
   /// One pass of Algorithm 1 (steps 1-9) from the current state.
@@ -178,10 +186,8 @@ class Simulation {
   void apply_viscous_and_solid_stress(double dt);
   /// "poisson setup": the face coefficients 1/rho of the new density.
   void setup_poisson();
-  /// "contact": contact force on the faces of the new configuration.
-  void compute_contact_force();
   /// Step 5, eq. (5.3), "face velocities": predicted face velocities and their divergence.
-  void face_accelerations();
+  void face_accelerations(double dt);
   void predict_face_velocities(double dt);
   /// Step 6, eq. (5.4), "poisson": the pressure correction.
   void solve_pressure();
@@ -189,8 +195,6 @@ class Simulation {
   void project(double dt);
   /// "bodies": the direct forcing of the rigid bodies' velocity (solver/model/rigid_body.hpp).
   void force_bodies(double dt);
-  /// "contact": the gap and event tracker after the step.
-  void observe_contact();
   /// time.splitting = "increment" and held cells ([[solid]] forcing_hold), before the
   /// advection: the cell average G_c^n of the face accelerations of the step's start, the
   /// viscous force of u^n, the advection's momentum source and the list of held cells.
@@ -218,8 +222,6 @@ class Simulation {
   /// "upper_convected") of every elastic solid into qxx_, qxy_, qyy_.
   void rate_coefficients(double dt);
   void impose_prescribed_velocity(double t);
-  /// Subtracts beta_f times the contact face force from the face accelerations gxf_, gyf_.
-  void add_contact_face_accel();
 
   Config cfg_;
   /// The sides as the projection and the pressure solvers see them (built once).
@@ -245,7 +247,6 @@ class Simulation {
   Field sxx_, sxy_, syy_;                  // blended solid stress (global, if any solid is elastic)
   double elastic_energy_ = 0.0;
   bool prescribed_depends_on_time_ = false;  ///< flow = "prescribed" with an expression of t
-  std::unique_ptr<Contact> contact_;
   std::unique_ptr<RigidBodies> bodies_;    // null unless a solid is rigid
   bool cut_faces_ = false;                 // a rigid body with forcing = "sharp" (bodies_->cuts_faces())
   bool increment_ = false;                 // time.splitting = "increment"
@@ -254,8 +255,6 @@ class Simulation {
   Field vnx_, vny_;                        // increment: viscous force of u^n
   Field srcx_, srcy_;                      // increment: the advection's momentum source vn - rho_old G_c^n
   std::vector<std::array<int, 3>> held_;   // the held cells of this step: i, j, body
-  Field cfx_, cfy_;                        // contact force density of the last step
-  bool contact_force_written_ = true;      // cfx_/cfy_ may be nonzero (compute_contact_force)
   std::unique_ptr<PoissonSolver> poisson_;
   SolveStats last_stats_;
   std::unique_ptr<ImplicitVelocity> implicit_;  ///< implicit stress step (null: explicit)
@@ -269,6 +268,7 @@ class Simulation {
   Field uk_, vk_, ufk_, vfk_;            ///< the last pass's end-of-step velocities
   double picard_change_ = 0.0;
   long picard_cycles_ = 0;
+  mutable FlowLimit flow_limit_;  ///< of the last stable_dt()
   PhaseTimers timers_;
   std::vector<std::unique_ptr<Component>> components_;
   StateRegistry state_;
