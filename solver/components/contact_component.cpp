@@ -51,7 +51,11 @@ void ContactComponent::register_state(StateRegistry& reg) {
   reg.add_field("contact.cfy", cfy_);
   reg.add_record(
       "contact", [this](CheckpointWriter& w) { contact_.save_state(w); },
-      [this](CheckpointReader& r) { contact_.load_state(r); });
+      [this](CheckpointReader& r) {
+        contact_.load_state(r);
+        written_ = true;  // the loaded face force may be nonzero (a resume, or a restored
+                          // snapshot of time.solid_picard_iterations): clear it before writing
+      });
 }
 
 double ContactComponent::max_dt(const Simulation& sim) const {

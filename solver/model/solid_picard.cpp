@@ -84,7 +84,6 @@ double Simulation::step_picard(double dt) {
     state_.load(r);
     solid_diag_step_ = -1;  // caches keyed by the step count (as load_state)
     ke_step_ = -1;
-    contact_force_written_ = true;  // the restored contact force may be nonzero: clear it
     blend_into(uf_adv_, uf_, ufk_, th);
     blend_into(vf_adv_, vf_, vfk_, th);
     blend_into(u_adv_, u_, uk_, th);
