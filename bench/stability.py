@@ -278,6 +278,19 @@ def jobs_a(quick):
                                 sets=method_sets(s, c, x) + ["grid.nx=32", "grid.ny=32", "time.end=100",
                                                              "time.max_steps=400", "output.vtk=false",
                                                              f"solid.0.mu_s={mu:g}", f"solids.solid_cfl={p:g}"]))
+    # the velocity Verlet elastic coupling (time.elastic_coupling = "verlet", kernels/verlet.hpp):
+    # the same explicit stress, second order in the energy; same P as the explicit rows
+    for s_form in (("cell",) if quick else ("cell", "face")):
+        for mu in stiff:
+            for p in ps:
+                out.append(dict(sweep="a", method=f"verlet ({s_form}/cons/vanleer)", stress_discretisation=s_form,
+                                conservative=True, xi_advection="vanleer", extrapolation="lsq", lsq_radius=2.83,
+                                param="solid_cfl", value=p, param2="mu_s/rho_s", value2=mu, mu_s=mu,
+                                tag=f"a/verlet_{s_form}_mu{mu:g}_P{p:g}",
+                                sets=method_sets(s_form, True, "vanleer") + [
+                                    'time.elastic_coupling="verlet"', "grid.nx=32", "grid.ny=32", "time.end=100",
+                                    "time.max_steps=400", "output.vtk=false", f"solid.0.mu_s={mu:g}",
+                                    f"solids.solid_cfl={p:g}"]))
     # the semi-implicit solid stress (docs/implicit.md) has no solid time-step limit:
     # dt comes from advection and time.dt_max only, so P is imposed as dt_max = P dx /
     # sqrt(2 mu_s / rho_s) (where the advective limit binds first, p_effective records the P

@@ -67,6 +67,14 @@ enum class Splitting { Split, Increment };
 /// isotropic term eta = k G dt (1 - H) minus its explicit counterpart, or the
 /// upper-convected stress increment 2 mu_s dt (1 - H)(L b + b L^T) implicit (docs/implicit.md).
 enum class SolidStressTime { Explicit, SemiImplicit, UpperConvected };
+/// Config::elastic_coupling (time.elastic_coupling): how the explicit solid stress and the xi
+/// advection take turns in a step. SymplecticEuler: Algorithm 1 -- xi advected with the
+/// velocity of the step's start, then the stress of the new xi applied whole (drift, kick):
+/// the stored velocity runs half a step ahead of xi, so the total energy is off by O(dt).
+/// Verlet: velocity Verlet -- xi advected with the midpoint velocity u^n + dt/2 a^n, the
+/// stress applied as the mean of the old and new xi's forces (half kick, drift, half kick):
+/// second order, same stress evaluations per step (docs/method.md, "Time step").
+enum class ElasticCoupling { SymplecticEuler, Verlet };
 /// Config::jump_flux: the momentum's face values where the density is not one value in a
 /// face's stencil (a density jump), with central advection: Superbee-limited (default) or
 /// the same central values as elsewhere (docs/density_ratio.md).
@@ -217,6 +225,7 @@ struct Config {
   /// the projection corrects the faces by tau grad dp (the pressure relaxes by dt/tau per step).
   double rhie_chow_dt = 0.0;
   SolidStressTime solid_time = SolidStressTime::Explicit;  ///< time.solid_stress
+  ElasticCoupling elastic_coupling = ElasticCoupling::SymplecticEuler;  ///< time.elastic_coupling
   double solid_implicit_k = 0.5;  ///< time.solid_implicit_k: k of eta = k G dt (stable for k >= 1/4)
   /// time.solid_implicit_reach: cells by which the implicit solid coefficient's blend
   /// 1 - H(phi - reach dx) reaches further into the fluid than the stress's (docs/implicit.md)

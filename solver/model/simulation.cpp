@@ -13,6 +13,7 @@
 #include "kernels/projection.hpp"
 #include "kernels/rk4.hpp"
 #include "kernels/solid_stress.hpp"
+#include "kernels/verlet.hpp"
 #include "kernels/viscous.hpp"
 #include "solver/model/boundary.hpp"
 #include "solver/model/component_kind.hpp"
@@ -60,6 +61,12 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
   }
   if (cfg_.solid_time == SolidStressTime::UpperConvected)
     for (Field* f : {&qxx_, &qxy_, &qyy_}) f->resize(nx, ny, ng);
+  verlet_ = elastic && cfg_.elastic_coupling == ElasticCoupling::Verlet && cfg_.flow != FlowMode::Prescribed;
+  if (verlet_) {
+    for (Field* f : {&fpx_, &fpy_, &dfx_, &dfy_, &vpx_, &vpy_}) f->resize(nx, ny, ng);
+    for (Field* f : {&ufp_, &wf_}) f->resize(nx + 1, ny, ng);
+    for (Field* f : {&vfp_, &wv_}) f->resize(nx, ny + 1, ng);
+  }
   initialise();
   register_state();
   add_components();
@@ -80,6 +87,13 @@ void Simulation::register_state() {
   state_.add_value("sim.poisson_residual", last_stats_.rel_residual);
   register_solids_state();
   if (implicit_) implicit_->register_state(state_);  // its initial guesses (warm start)
+  if (verlet_) {  // the last step's force and face velocities (time.elastic_coupling = "verlet")
+    for (const auto& [name, f] : {std::pair<const char*, Field*>{"fpx", &fpx_}, {"fpy", &fpy_}, {"dfx", &dfx_},
+                                  {"dfy", &dfy_}, {"ufp", &ufp_}, {"vfp", &vfp_}})
+      state_.add_field(std::string("sim.verlet.") + name, *f);
+    state_.add_value("sim.verlet.dt_prev", dt_prev_);
+    state_.add_count("sim.verlet.steps", verlet_steps_);
+  }
 }
 
 void Simulation::add_components() {
@@ -231,7 +245,7 @@ void Simulation::update_solids(double dt) {
     // last pass's u^{n+1} (solver/model/solid_picard.cpp)
     if (!rigid) {
       if (xi_transport_) s.advect(uf_adv_, vf_adv_, u_adv_, v_adv_, dt);
-      else s.advect(uf_, vf_, u_, v_, dt);
+      else s.advect(verlet_ ? wf_ : uf_, verlet_ ? wv_ : vf_, u_, v_, dt);  // time.elastic_coupling
     }
     const double t_adv = std::chrono::duration<double>(clock::now() - t0).count();
     if (!rigid) s.extrapolate();
@@ -254,6 +268,20 @@ void Simulation::update_solids(double dt) {
   timers_.add("xi advection", sum[0] * scale, n);
   timers_.add("extrapolation", sum[1] * scale, n);
   timers_.add("level set", sum[2] * scale, n);
+}
+
+void Simulation::drift_velocities(double dt) {
+  // w = u^n + dt/2 a^n on the faces: a^n from the last step's change of the projected face
+  // velocities, its stress part moved from (F^{n-1} + F^n) / 2 to F^n (kernels/verlet.hpp);
+  // a first step (no history) drifts with u^n, its F^0 = F(xi^0) taken as 0 (xi = x)
+  const Grid& g = cfg_.grid;
+  const bool history = verlet_steps_ > 0;
+  verlet_drift_faces(uf_.cview(), vf_.cview(), ufp_.cview(), vfp_.cview(), dfx_.cview(), dfy_.cview(), rho_.cview(),
+                     wf_.view(), wv_.view(), g.nx, g.ny, history ? 0.5 * dt / dt_prev_ : 0.0,
+                     history ? 0.25 * dt : 0.0, sides_);
+  ufp_ = uf_;
+  vfp_ = vf_;
+  dt_prev_ = dt;
 }
 
 void Simulation::solid_force() {
@@ -428,6 +456,7 @@ double Simulation::step_state(double dt) {
 double Simulation::step_once(double dt) {
   if (!solids_.empty()) {
     rho_old_ = rho_;
+    if (verlet_) drift_velocities(dt);   // time.elastic_coupling = "verlet"
     move_solids(dt);                     // steps 1-3
   }
   advect_momentum(dt);                   // step 4
@@ -556,7 +585,16 @@ void Simulation::apply_viscous_and_solid_stress(double dt) {
   }
   if (elastic) {
     ScopedPhase ph(timers_, "solid stress");
+    if (verlet_) {
+      vpx_ = fx_;
+      vpy_ = fy_;
+    }
     solid_force();
+    if (verlet_) {  // fx_ = viscous + (F^n + F^{n+1}) / 2 (kernels/verlet.hpp)
+      verlet_kick(fx_.view(), fy_.view(), vpx_.cview(), vpy_.cview(), fpx_.view(), fpy_.view(), dfx_.view(),
+                  dfy_.view(), nx, ny);
+      ++verlet_steps_;
+    }
   }
   if ((viscous || elastic) && implicit_) {
     ScopedPhase ph(timers_, "implicit velocity");

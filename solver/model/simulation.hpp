@@ -209,8 +209,12 @@ class Simulation {
   double projection_time(double dt) const;
 
   /// Algorithm 1 steps 1-2 for every solid (timed as "xi advection", "extrapolation",
-  /// "level set").
+  /// "level set"); xi is carried by the face velocities uf_, vf_ or, with
+  /// time.elastic_coupling = "verlet", by the midpoint faces wf_, wv_.
   void update_solids(double dt);
+  /// time.elastic_coupling = "verlet", before the solids move: the midpoint face velocities
+  /// wf_, wv_ of the drift (kernels/verlet.hpp), then the current faces kept for the next step.
+  void drift_velocities(double dt);
   void blend_material_fields();
   /// Force of the solid stresses (conservative or not) into fx_, fy_ (which it overwrites).
   void solid_force();
@@ -269,6 +273,15 @@ class Simulation {
   double picard_change_ = 0.0;
   long picard_cycles_ = 0;
   mutable FlowLimit flow_limit_;  ///< of the last stable_dt()
+  // time.elastic_coupling = "verlet" (kernels/verlet.hpp); empty otherwise
+  bool verlet_ = false;
+  Field fpx_, fpy_;        ///< the stress force F^n of the last step's xi (state)
+  Field dfx_, dfy_;        ///< F^n - F^{n-1} (state)
+  Field ufp_, vfp_;        ///< the face velocities of the last step's start, u_f^{n-1} (state)
+  Field wf_, wv_;          ///< the drift's midpoint face velocities (scratch)
+  Field vpx_, vpy_;        ///< the explicit viscous force before the stress is added (scratch)
+  double dt_prev_ = 0.0;   ///< the last step's dt (state)
+  long verlet_steps_ = 0;  ///< steps taken with this coupling: 0 = no history yet (state)
   PhaseTimers timers_;
   std::vector<std::unique_ptr<Component>> components_;
   StateRegistry state_;

@@ -46,6 +46,10 @@ MemoryEstimate estimate_memory(const Config& cfg) {
   // (1 x-face, 1 y-face) with solids
   m.fields = 18 * cell + 3 * (xface + yface);
   if (elastic) m.fields += 3 * cell;
+  // time.elastic_coupling = "verlet": the last force, its change and the viscous force
+  // (6 cell fields), the last and the midpoint face velocities (2 x-face, 2 y-face)
+  if (elastic && cfg.elastic_coupling == ElasticCoupling::Verlet && cfg.flow != FlowMode::Prescribed)
+    m.fields += 6 * cell + 2 * (xface + yface);
   if (!cfg.solids.empty()) m.fields += xface + yface;
   // Poisson: multigrid keeps the finest operator (tx, ty, invd), the scaled right-hand
   // side and the coarse levels (tx, ty, invd, x, f: 5 fields on 1/4 + 1/16 + ... = 1/3 of

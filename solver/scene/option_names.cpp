@@ -104,6 +104,12 @@ std::span<const OptionName<SolidStressTime>> option_names(SolidStressTime) {
   return span_of(n);
 }
 
+std::span<const OptionName<ElasticCoupling>> option_names(ElasticCoupling) {
+  static const OptionName<ElasticCoupling> n[] = {{ElasticCoupling::SymplecticEuler, "symplectic_euler"},
+                                                  {ElasticCoupling::Verlet, "verlet"}};
+  return span_of(n);
+}
+
 std::span<const OptionName<XiFlux>> option_names(XiFlux) {
   static const OptionName<XiFlux> n[] = {
       {XiFlux::Central, "central"}, {XiFlux::Superbee, "superbee"}, {XiFlux::VanLeer, "vanleer"}};

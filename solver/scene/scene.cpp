@@ -238,6 +238,10 @@ void parse_time(const Ctx& ctx, const Table& top, Config& cfg) {
   cfg.splitting = t.option<Splitting>("splitting");
   cfg.rhie_chow_dt = t.number("rhie_chow_dt");
   cfg.solid_time = t.option<SolidStressTime>("solid_stress");
+  cfg.elastic_coupling = t.option<ElasticCoupling>("elastic_coupling");
+  t.require(cfg.elastic_coupling == ElasticCoupling::SymplecticEuler || cfg.solid_time == SolidStressTime::Explicit,
+            "elastic_coupling",
+            "\"verlet\" needs solid_stress = \"explicit\" (the implicit solid terms are first order anyway)");
   cfg.solid_implicit_k = t.number("solid_implicit_k");
   cfg.solid_implicit_reach = t.number("solid_implicit_reach");
   cfg.solid_implicit_cfl = t.number("solid_implicit_cfl");
@@ -392,6 +396,16 @@ void check_implicit_reach(const Ctx& ctx, const Table& top, const Config& cfg) {
   t.fail("solid_implicit_reach", "must be <= solids.band - solids.transition = " + fmt_num(limit) +
                                      " cells (the implicit blend must end inside the extrapolated band), got " +
                                      fmt_num(cfg.solid_implicit_reach));
+}
+
+/// time.elastic_coupling = "verlet" advects xi with a midpoint face velocity built from the
+/// last two steps' projected face velocities (Simulation::drift_velocities): the cell
+/// velocity of solids.xi_velocity = "cell" has no such history.
+void check_elastic_coupling(const Ctx& ctx, const Table& top, const Config& cfg) {
+  if (cfg.elastic_coupling == ElasticCoupling::SymplecticEuler || cfg.solid_opt.xi_velocity == XiVelocity::Face) return;
+  Table t(ctx, *top.table("time", true), "time", "time");  // the key was given
+  t.fail("elastic_coupling", "\"verlet\" needs solids.xi_velocity = \"face\" (its midpoint velocity is built from the "
+                             "face velocities)");
 }
 
 void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
@@ -912,6 +926,7 @@ Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>&
   parse_probes(ctx, top, cfg);
   parse_solids_options(ctx, top, cfg);  // after parse_solver: the solids need cfg.flow
   check_implicit_reach(ctx, top, cfg);  // after parse_solids_options: checked against the band
+  check_elastic_coupling(ctx, top, cfg);  // after parse_solids_options: the xi velocity
   parse_suspension(ctx, root, top, cfg);  // before parse_solids: its particles are [[solid]] tables
   parse_solids(ctx, top, cfg);
   parse_contact(ctx, top, cfg);  // after parse_solids_options: the range is checked against the band

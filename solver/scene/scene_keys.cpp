@@ -141,6 +141,14 @@ std::vector<KeyDef> build_keys() {
                               "of the new velocity (upper-convected rate of b, blended with 1 - H) implicit in the "
                               "velocity solve, its explicit counterpart subtracted (first order in dt); no solid "
                               "time-step limit (docs/implicit.md)"),
+      choice<ElasticCoupling>("time", "elastic_coupling", d.elastic_coupling,
+                              "order of the explicit solid stress and the ξ advection in a step: "
+                              "`\"symplectic_euler\"`, Algorithm 1 (ξ advected with the step's starting velocity, then "
+                              "the new ξ's stress applied whole: the velocity runs half a step ahead of ξ and the total "
+                              "energy is off by O(dt)); `\"verlet\"`, velocity Verlet (ξ advected with the midpoint velocity "
+                              "u + dt a / 2, a the last step's acceleration, and the mean of the old and new ξ's stress "
+                              "forces applied: second order, no extra stress evaluation); needs time.solid_stress = "
+                              "\"explicit\" and solids.xi_velocity = \"face\" (docs/method.md, \"Time step\")"),
       num("time", "solid_implicit_k", d.solid_implicit_k, gt(0),
           "k of the semi-implicit solid stress: eta = k G dt (stable for k >= 1/4, docs/implicit.md)"),
       num("time", "solid_implicit_reach", d.solid_implicit_reach, ge(0, "cells"),
