@@ -10,10 +10,13 @@
 #   bash bench/run_suspension.sh [BUILD_DIR]   # defaults build; 12 runs, 2217 s wall on 1
 #                                              # thread on the loaded shared machine (load ~15)
 # Knobs (environment): NX (128: 6.4 cells per radius), T_END (4), T0 (1), PHIS
-# ("0.05 0.1 0.2 0.3"; 0.4 places, see results/suspension.md, but was left out for time),
+# ("0.05 0.1 0.2 0.3"; 0.4 places, see results/suspension.md, but is run apart for time),
 # CAS (capillary numbers; the first is the "stiff" one, "0.01 0.05 0.2"), SEED (1), JOBS
 # (runs at once, 1 thread each; 1), RUNS (the run directories, kept; default a temporary
-# directory).
+# directory), OUT (results/suspension), SNAP_PHI (0.3: the fraction whose runs keep VTK frames
+# for the snapshot). The stiff phi = 0.4 point is run apart:
+#   PHIS=0.4 CAS=0.01 SNAP_PHI=0.4 OUT=results/suspension/dense bash bench/run_suspension.sh
+# and the default run's chart adds results/suspension/dense/suspension.csv when it exists.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${1:-build}/refmap
@@ -28,11 +31,12 @@ if [ -z "${RUNS:-}" ]; then
   RUNS=$(mktemp -d)
   trap 'rm -rf "$RUNS"' EXIT
 fi
-mkdir -p "$RUNS" results/suspension
+OUT=${OUT:-results/suspension}
+mkdir -p "$RUNS" "$OUT"
 stiff=${CAS%% *}
 # one line per run: directory, phi, Ca; the snapshot case (phi = 0.3, or the largest phi
 # below it) keeps its VTK frames
-snap_phi=0.3
+snap_phi=${SNAP_PHI:-0.3}
 list="$RUNS/runs.txt"
 : > "$list"
 for phi in $PHIS; do
@@ -59,4 +63,5 @@ run_one() {
 export -f run_one
 export bin NX T_END SEED snap_phi
 xargs -P "$JOBS" -L 1 bash -c 'run_one "$@"' _ < "$list"
-/usr/bin/python3 bench/suspension.py --runs "$list" --t0 "$T0" --stiff "$stiff" --nx "$NX" --out results/suspension
+/usr/bin/python3 bench/suspension.py --runs "$list" --t0 "$T0" --stiff "$stiff" --nx "$NX" --out "$OUT" \
+  --extra results/suspension/dense/suspension.csv --dilute results/suspension/dilute.csv

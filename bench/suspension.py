@@ -2,6 +2,9 @@
 """Summary of the sheared-suspension study (bench/run_suspension.sh; results/suspension.md).
 
     /usr/bin/python3 bench/suspension.py --runs RUNS.txt --t0 1 --stiff 0.01 --nx 128 --out results/suspension
+    /usr/bin/python3 bench/suspension.py --stiff 0.01 --nx 128 --out results/suspension \
+        --extra results/suspension/dense/suspension.csv --dilute results/suspension/dilute.csv
+                                       # redraws eta_vs_phi.png alone, from suspension.csv
 
 RUNS.txt: one line per run, "DIR PHI CA" (DIR.rc holds the exit code, DIR.err the messages).
 For every run: eta_r (diagnostics.csv, output.wall_stress: the mean of the two walls' shear
@@ -70,13 +73,22 @@ def average(t, eta, t0):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--runs", required=True)
+    ap.add_argument("--runs", default="", help="the runs list; without it, only eta_vs_phi.png is redrawn "
+                    "from OUT/suspension.csv (and --extra, --dilute)")
     ap.add_argument("--t0", type=float, default=1.0)
     ap.add_argument("--stiff", type=float, required=True)
     ap.add_argument("--nx", type=int, required=True)
     ap.add_argument("--out", required=True)
+    ap.add_argument("--extra", default="", help="a suspension.csv of runs made apart (the dense point), "
+                    "added to the chart when it exists and is not OUT's own")
+    ap.add_argument("--dilute", default="", help="dilute.csv of bench/run_suspension_dilute.sh: the free "
+                    "disc's coefficient at this grid, drawn when it exists")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
+    if not a.runs:
+        rows = list(csv.DictReader(open(os.path.join(a.out, "suspension.csv"))))
+        plots(a, rows, {})
+        return
     runs = [l.split() for l in open(a.runs) if l.strip()]
     rows, series = [], {}
     for d, phi, ca in runs:
@@ -117,8 +129,14 @@ def plots(a, rows, series):
     fig, ax = plt.subplots(figsize=(6, 4.2))
     cas = sorted({float(r["capillary"]) for r in rows})
     marks = ["o", "s", "^", "D", "v"]
+    extra = []
+    if a.extra and os.path.exists(a.extra) and \
+            os.path.abspath(os.path.dirname(a.extra)) != os.path.abspath(a.out):
+        extra = [r for r in csv.DictReader(open(a.extra)) if r["eta_r"] != ""]
+        cas = sorted(set(cas) | {float(r["capillary"]) for r in extra})
     for k, ca in enumerate(cas):
-        rr = [r for r in rows if float(r["capillary"]) == ca and r["eta_r"] != ""]
+        rr = [r for r in rows + extra if float(r["capillary"]) == ca and r["eta_r"] != ""]
+        rr.sort(key=lambda r: float(r["phi"]))
         if not rr:
             continue
         x = [float(r["phi"]) for r in rr]
@@ -130,6 +148,15 @@ def plots(a, rows, series):
     ax.plot(xs, 1 + 2 * xs, "k--", lw=1, label=r"2-D Einstein $1 + 2\phi$ (Brady 1984)")
     ax.plot(xs, 1 + CONFINED * xs, "k:", lw=1,
             label=rf"one pinned disc, this cell: $1 + {CONFINED:.2f}\phi$ (shear_cell.csv)")
+    if a.dilute and os.path.exists(a.dilute):
+        # the free stiff disc on the centre line at this grid: the dilute slope these runs
+        # would show if the particles did not interact (walls and blend width included)
+        free = [r for r in csv.DictReader(open(a.dilute)) if r["series"] == "res" and int(r["nx"]) == a.nx
+                and abs(float(r["H"]) - 1) < 1e-12]
+        if free:
+            c = float(free[0]["coefficient"])
+            ax.plot(xs, 1 + c * xs, "-.", color="0.4", lw=1,
+                    label=rf"one free stiff disc, this cell and grid: $1 + {c:.2f}\phi$ (dilute.csv)")
     ax.set_xlabel(r"area fraction $\phi$ (placed)")
     ax.set_ylabel(r"relative viscosity $\eta_r = \tau_w / (\mu \dot\gamma)$")
     ax.set_title(f"sheared suspension of discs, a/H = 0.1, grid {a.nx}x{a.nx // 2} "
@@ -167,6 +194,8 @@ def plots(a, rows, series):
         plt.close(fig)
 
     # ---- snapshot: the solids' shear stress at the last frame
+    if not a.runs:
+        return
     from plot_run import Frame
     runs = [l.split() for l in open(a.runs) if l.strip()]
     framed = [(float(p), float(c), d) for d, p, c in runs if glob.glob(os.path.join(d, "frame_*.vti"))]
