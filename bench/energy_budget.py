@@ -33,6 +33,7 @@ import math
 import os
 import subprocess
 from collections import defaultdict
+from coupling import with_coupling  # bench/coupling.py
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENE = os.path.join(ROOT, "scenes", "disc_tgv.toml")
@@ -61,7 +62,7 @@ def run(case, binary, outdir, steps):
     sets = sets + ["grid.nx=32", "grid.ny=32", f"solid.0.mu_s={mu:g}", f"time.dt_max={dt!r}",
                    "output.vtk=false"]
     cmd = [binary, SCENE, "--steps", str(steps), "--out", os.path.join(outdir, name + ".csv")]
-    for s in sets:
+    for s in with_coupling(sets):
         cmd += ["--set", s]
     r = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
     return name, r.returncode, r.stderr.strip(), " ".join(cmd[1:])

@@ -3,6 +3,7 @@ import argparse, csv, math, os, subprocess, sys, time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scenes"))
 import solids_csv  # noqa: E402  (solids.csv pivoted to solid<k>_<quantity> columns)
+from coupling import with_coupling  # bench/coupling.py
 
 SEMI = ["time.viscous=implicit", "time.solid_stress=semi_implicit"]
 UC = ["time.viscous=implicit", "time.solid_stress=upper_convected"]
@@ -31,7 +32,7 @@ def timing(d):
 
 def run(args, scene, name, sets):
     d = os.path.join(args.raw, name)
-    cmd = [args.bin, "run", scene, "-o", d, "-q", "-j", "1"] + sum((["--set", s] for s in sets), [])
+    cmd = [args.bin, "run", scene, "-o", d, "-q", "-j", "1"] + sum((["--set", s] for s in with_coupling(sets)), [])
     t0 = time.time()
     p = subprocess.run(cmd, capture_output=True, text=True)
     return collect(d, p.returncode == 0, time.time() - t0)

@@ -31,6 +31,7 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scenes"))
 import solids_csv  # noqa: E402
+from coupling import with_coupling  # bench/coupling.py
 
 SEMI = ['time.viscous="implicit"', 'time.solid_stress="semi_implicit"']
 
@@ -65,7 +66,7 @@ def run(binary, raw, tag, sets):
     out = os.path.join(raw, tag)
     shutil.rmtree(out, ignore_errors=True)
     cmd = [binary, "run", os.path.join(ROOT, "scenes", "disc_tgv.toml"), "-o", out, "-j", "1", "-q"]
-    for s in sets:
+    for s in with_coupling(sets):
         cmd += ["--set", s]
     p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
     res = dict(rc=p.returncode, failure=p.stderr.strip().splitlines()[-1] if p.returncode and p.stderr.strip() else "")

@@ -77,6 +77,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scenes"))
 import solids_csv  # noqa: E402  (solids.csv pivoted to solid<k>_<quantity> columns)
+from coupling import with_coupling  # bench/coupling.py
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = os.path.join(ROOT, "scenes")
@@ -98,7 +99,7 @@ def run_one(job, binary, raw):
     shutil.rmtree(out, ignore_errors=True)
     scene = os.path.join(SCENES, job.get("scene", "disc_tgv") + ".toml")
     cmd = [binary, "run", scene, "-o", out, "-j", "1", "-q"]
-    for s in job["sets"]:
+    for s in with_coupling(job["sets"]):
         cmd += ["--set", s]
     t0 = time.time()
     p = subprocess.run(cmd, capture_output=True, text=True,

@@ -165,8 +165,9 @@ double shear_wave_energy_deviation(const std::string& form, std::vector<std::str
 
 }  // namespace
 
-TEST(ShearWaveEnergy, WithinOnePercentOverFourPeriodsOnlyWellBelowTheDefaultStep) {
-  // The explicit stress's energy error is first order in dt (measured): a swing within each
+TEST(ShearWaveEnergy, SymplecticEulerWithinOnePercentOnlyWellBelowTheDefaultStep) {
+  // Algorithm 1's coupling (time.elastic_coupling = "symplectic_euler", the default before
+  // Verlet): the explicit stress's energy error is first order in dt (measured): a swing within each
   // period (about +-2 % at solid_cfl 0.5) and a loss that accumulates (0.7 % a period). At
   // 64^2, max |E / E0 - 1| over t in [0, 4] measured (face / cell): solid_cfl 0.5 (the
   // default) 4.97 / 4.85 %; 0.35, 3.55 / 3.43 %; 0.25, 2.59 / 2.47 %; 0.15, 1.62 / 1.49 %;
@@ -175,10 +176,11 @@ TEST(ShearWaveEnergy, WithinOnePercentOverFourPeriodsOnlyWellBelowTheDefaultStep
   // the default stays 0.5 because 0.075 fails two validation tests (ContactWall.
   // BounceUnderGravity: the stiff disc's rebound no longer leaves the contact range;
   // StabilityLimits.SpecificStressBlend...: more energy gain; docs/method.md, "Time step").
-  EXPECT_LT(shear_wave_energy_deviation("face", {"solids.solid_cfl=0.075"}), 0.01);
-  EXPECT_LT(shear_wave_energy_deviation("cell", {"solids.solid_cfl=0.075"}), 0.01);
-  // at the default (6.7x fewer steps) five times the bound
-  EXPECT_GT(shear_wave_energy_deviation("face"), 0.04);
+  const std::string se = "time.elastic_coupling=\"symplectic_euler\"";
+  EXPECT_LT(shear_wave_energy_deviation("face", {se, "solids.solid_cfl=0.075"}), 0.01);
+  EXPECT_LT(shear_wave_energy_deviation("cell", {se, "solids.solid_cfl=0.075"}), 0.01);
+  // at the default step (6.7x fewer steps) five times the bound
+  EXPECT_GT(shear_wave_energy_deviation("face", {se}), 0.04);
 }
 
 TEST(ShearWaveEnergy, VerletCouplingWithinOnePercentAtTheDefaultStep) {
@@ -187,8 +189,32 @@ TEST(ShearWaveEnergy, VerletCouplingWithinOnePercentAtTheDefaultStep) {
   // max |E / E0 - 1| measured (face / cell) 0.19 / 0.054 % in the same 555 steps as Algorithm 1's
   // 4.97 / 4.85 % (results/shear_wave_energy.csv). The bounds keep the 1 % with a
   // margin and still fail if the coupling fell back to first order (2 % at P = 0.2).
-  EXPECT_LT(shear_wave_energy_deviation("face", {"time.elastic_coupling=verlet"}), 0.0025);
-  EXPECT_LT(shear_wave_energy_deviation("cell", {"time.elastic_coupling=verlet"}), 0.001);
+  // Verlet is the default coupling: the scene as shipped, no override
+  EXPECT_LT(shear_wave_energy_deviation("face"), 0.0025);
+  EXPECT_LT(shear_wave_energy_deviation("cell"), 0.001);
+}
+
+TEST(ElasticCoupling, VerletByDefaultWhereItAppliesRefusedWhereGivenAndNot) {
+  // the default "verlet" acts with the explicit stress and face transport of xi; where it
+  // cannot (an implicit solid stress, xi moved by cell velocities) the default falls back to
+  // Algorithm 1, and the key given there is refused, naming it (exit 2)
+  const std::vector<std::string> sets = {"grid.nx=32", "grid.ny=32"};
+  EXPECT_TRUE(verlet_coupling(load_scene(scene_path("disc_tgv.toml"), sets)));
+  for (const std::string& other : {std::string("time.solid_stress=\"semi_implicit\""),
+                                   std::string("solids.xi_velocity=\"cell\"")}) {
+    std::vector<std::string> s = sets;
+    s.push_back(other);
+    const Config c = load_scene(scene_path("disc_tgv.toml"), s);
+    EXPECT_EQ(c.elastic_coupling, ElasticCoupling::SymplecticEuler) << other;
+    EXPECT_FALSE(verlet_coupling(c)) << other;
+    s.push_back("time.elastic_coupling=\"verlet\"");
+    try {
+      load_scene(scene_path("disc_tgv.toml"), s);
+      ADD_FAILURE() << "verlet given with " << other << " was accepted";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("elastic_coupling"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(SolidMomentum, ConservativeFormConservesMomentumToRoundOff) {

@@ -225,7 +225,9 @@ struct Config {
   /// the projection corrects the faces by tau grad dp (the pressure relaxes by dt/tau per step).
   double rhie_chow_dt = 0.0;
   SolidStressTime solid_time = SolidStressTime::Explicit;  ///< time.solid_stress
-  ElasticCoupling elastic_coupling = ElasticCoupling::SymplecticEuler;  ///< time.elastic_coupling
+  /// time.elastic_coupling; Verlet acts only with the explicit stress and face transport of
+  /// xi (verlet_coupling()): symplectic Euler otherwise
+  ElasticCoupling elastic_coupling = ElasticCoupling::Verlet;
   double solid_implicit_k = 0.5;  ///< time.solid_implicit_k: k of eta = k G dt (stable for k >= 1/4)
   /// time.solid_implicit_reach: cells by which the implicit solid coefficient's blend
   /// 1 - H(phi - reach dx) reaches further into the fluid than the stress's (docs/implicit.md)
@@ -283,5 +285,13 @@ struct Config {
     return nullptr;
   }
 };
+
+/// Whether the solids' explicit stress is coupled by velocity Verlet: time.elastic_coupling
+/// = "verlet" (the default) with the explicit stress and xi moved by the face velocities,
+/// from which its midpoint velocity is built (docs/method.md, "Time step").
+inline bool verlet_coupling(const Config& c) {
+  return c.elastic_coupling == ElasticCoupling::Verlet && c.solid_time == SolidStressTime::Explicit &&
+         c.solid_opt.xi_velocity == XiVelocity::Face && c.flow != FlowMode::Prescribed;
+}
 
 }  // namespace refmap

@@ -61,7 +61,7 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
   }
   if (cfg_.solid_time == SolidStressTime::UpperConvected)
     for (Field* f : {&qxx_, &qxy_, &qyy_}) f->resize(nx, ny, ng);
-  verlet_ = elastic && cfg_.elastic_coupling == ElasticCoupling::Verlet && cfg_.flow != FlowMode::Prescribed;
+  verlet_ = elastic && verlet_coupling(cfg_);
   if (verlet_) {
     for (Field* f : {&fpx_, &fpy_, &dfx_, &dfy_, &vpx_, &vpy_}) f->resize(nx, ny, ng);
     for (Field* f : {&ufp_, &wf_}) f->resize(nx + 1, ny, ng);

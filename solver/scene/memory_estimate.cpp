@@ -48,7 +48,7 @@ MemoryEstimate estimate_memory(const Config& cfg) {
   if (elastic) m.fields += 3 * cell;
   // time.elastic_coupling = "verlet": the last force, its change and the viscous force
   // (6 cell fields), the last and the midpoint face velocities (2 x-face, 2 y-face)
-  if (elastic && cfg.elastic_coupling == ElasticCoupling::Verlet && cfg.flow != FlowMode::Prescribed)
+  if (elastic && verlet_coupling(cfg))
     m.fields += 6 * cell + 2 * (xface + yface);
   if (!cfg.solids.empty()) m.fields += xface + yface;
   // Poisson: multigrid keeps the finest operator (tx, ty, invd), the scaled right-hand

@@ -238,7 +238,12 @@ void parse_time(const Ctx& ctx, const Table& top, Config& cfg) {
   cfg.splitting = t.option<Splitting>("splitting");
   cfg.rhie_chow_dt = t.number("rhie_chow_dt");
   cfg.solid_time = t.option<SolidStressTime>("solid_stress");
+  // the default, "verlet", falls back to symplectic Euler where it does not apply (an
+  // implicit solid stress here, xi moved by cell velocities in check_elastic_coupling);
+  // given explicitly it is refused there
   cfg.elastic_coupling = t.option<ElasticCoupling>("elastic_coupling");
+  if (!t.has("elastic_coupling") && cfg.solid_time != SolidStressTime::Explicit)
+    cfg.elastic_coupling = ElasticCoupling::SymplecticEuler;
   t.require(cfg.elastic_coupling == ElasticCoupling::SymplecticEuler || cfg.solid_time == SolidStressTime::Explicit,
             "elastic_coupling",
             "\"verlet\" needs solid_stress = \"explicit\" (the implicit solid terms are first order anyway)");
@@ -401,9 +406,14 @@ void check_implicit_reach(const Ctx& ctx, const Table& top, const Config& cfg) {
 /// time.elastic_coupling = "verlet" advects xi with a midpoint face velocity built from the
 /// last two steps' projected face velocities (Simulation::drift_velocities): the cell
 /// velocity of solids.xi_velocity = "cell" has no such history.
-void check_elastic_coupling(const Ctx& ctx, const Table& top, const Config& cfg) {
+void check_elastic_coupling(const Ctx& ctx, const Table& top, Config& cfg) {
   if (cfg.elastic_coupling == ElasticCoupling::SymplecticEuler || cfg.solid_opt.xi_velocity == XiVelocity::Face) return;
-  Table t(ctx, *top.table("time", true), "time", "time");  // the key was given
+  const toml::table* time = top.table("time", false);
+  if (!time || !time->contains("elastic_coupling")) {  // the default: falls back
+    cfg.elastic_coupling = ElasticCoupling::SymplecticEuler;
+    return;
+  }
+  Table t(ctx, *time, "time", "time");  // the key was given
   t.fail("elastic_coupling", "\"verlet\" needs solids.xi_velocity = \"face\" (its midpoint velocity is built from the "
                              "face velocities)");
 }

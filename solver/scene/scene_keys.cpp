@@ -147,8 +147,9 @@ std::vector<KeyDef> build_keys() {
                               "the new ξ's stress applied whole: the velocity runs half a step ahead of ξ and the total "
                               "energy is off by O(dt)); `\"verlet\"`, velocity Verlet (ξ advected with the midpoint velocity "
                               "u + dt a / 2, a the last step's acceleration, and the mean of the old and new ξ's stress "
-                              "forces applied: second order, no extra stress evaluation); needs time.solid_stress = "
-                              "\"explicit\" and solids.xi_velocity = \"face\" (docs/method.md, \"Time step\")"),
+                              "forces applied: second order, no extra stress evaluation); `\"verlet\"` needs time.solid_stress = "
+                              "\"explicit\" and solids.xi_velocity = \"face\": given with others it is refused, "
+                              "as the default it falls back to `\"symplectic_euler\"` there (docs/method.md, \"Time step\")"),
       num("time", "solid_implicit_k", d.solid_implicit_k, gt(0),
           "k of the semi-implicit solid stress: eta = k G dt (stable for k >= 1/4, docs/implicit.md)"),
       num("time", "solid_implicit_reach", d.solid_implicit_reach, ge(0, "cells"),
