@@ -20,18 +20,12 @@ same over the reference run's pressure cycles per step ("cost": pressure-solve u
 """
 import argparse
 import bisect
-import csv
 import math
 import os
-import shutil
 import statistics
-import subprocess
-import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "scenes"))
-import solids_csv  # noqa: E402
-from coupling import with_coupling  # bench/coupling.py
+import disc_study  # noqa: E402  (bench/disc_study.py)
 
 SEMI = ['time.viscous="implicit"', 'time.solid_stress="semi_implicit"']
 
@@ -63,28 +57,11 @@ PLAN = [(["semi_k0.5", "picard_defect_th0.5_n2"], "100,1e4", "2,4,8"),
 
 
 def run(binary, raw, tag, sets):
-    out = os.path.join(raw, tag)
-    shutil.rmtree(out, ignore_errors=True)
-    cmd = [binary, "run", os.path.join(ROOT, "scenes", "disc_tgv.toml"), "-o", out, "-j", "1", "-q"]
-    for s in with_coupling(sets):
-        cmd += ["--set", s]
-    p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
-    res = dict(rc=p.returncode, failure=p.stderr.strip().splitlines()[-1] if p.returncode and p.stderr.strip() else "")
-    path = os.path.join(out, "diagnostics.csv")
-    if not os.path.exists(path):
+    res, col = disc_study.run_disc_tgv(binary, raw, tag, sets)
+    if col is None:
         return res, None
-    head, rows = solids_csv.read_rows(path)
-    if not rows:
-        return res, None
-    col = {h: [r[k] for r in rows] for k, h in enumerate(head)}
-    e = col["total_energy"]
-    area = solids_csv.wide_columns(out, col["step"]).get("solid0_area", [])
-    mid = len(e) // 2
-    res.update(steps=int(col["step"][-1]), t_end=col["time"][-1], e_max=max(e) / e[0],
-               late_growth=max(e[mid:]) / e[mid] if e[mid] > 0 else float("nan"), e_end=e[-1] / e[0],
-               area_drift=max(abs(a - area[0]) / area[0] for a in area if not math.isnan(a)) if area else float("nan"),
-               poisson_per_step=statistics.mean(col["poisson_iterations"][1:] or [0]),
-               wall_per_step=col["wall_time"][-1] / max(1, len(rows) - 1))
+    res.update(poisson_per_step=statistics.mean(col["poisson_iterations"][1:] or [0]),
+               wall_per_step=col["wall_time"][-1] / max(1, len(col["step"]) - 1))
     if "picard_change" in col:
         ch = col["picard_change"][1:]
         res.update(change_median=statistics.median(ch), change_max=max(ch),
@@ -124,10 +101,7 @@ def main():
     cols = ["method", "grid", "mu_s_over_rho_s", "P", "rc", "steps", "t_end", "e_max", "late_growth", "e_end",
             "area_drift", "ke_dev_explicit", "change_median", "change_max", "passes", "cycles_per_step",
             "cost_pressure_units", "wall_per_step", "failure"]
-    old = []
-    if os.path.exists(path):  # rows of other (method, grid, mu, P) are kept
-        with open(path) as f:
-            old = list(csv.DictReader(f))
+    old = disc_study.read_rows(path)  # rows of other (method, grid, mu, P) are kept
     n = a.grid
     plan = [(a.methods.split(","), a.mus, a.ps)] if a.methods else PLAN
     refs = {}
@@ -159,13 +133,7 @@ def main():
                         row["cost_pressure_units"] = r["cycles_per_step"] / refs[mu][1]
                     print(", ".join(f"{k}={row.get(k, '')}" for k in cols), flush=True)
                     new.append(row)
-    keys = {(r["method"], str(r["grid"]), r["mu_s_over_rho_s"], r["P"]) for r in new}
-    rows = [r for r in old if (r["method"], r["grid"], r["mu_s_over_rho_s"], r["P"]) not in keys] + new
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=cols, extrasaction="ignore")
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in r.items() if k in cols})
+    disc_study.write_merged(path, cols, old, new)
 
 
 if __name__ == "__main__":

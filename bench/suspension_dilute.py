@@ -31,6 +31,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "scenes"))
 import solids_csv  # noqa: E402
+from suspension import window_mean  # noqa: E402  (bench/suspension.py: the study's own average)
 
 A = 0.1  # the disc's radius
 
@@ -39,15 +40,6 @@ def read_diag(run):
     header, rows = solids_csv.read_rows(os.path.join(run, "diagnostics.csv"))
     a = np.array(rows)
     return {n: a[:, i] for i, n in enumerate(header)}
-
-
-def window_mean(t, y, t0, t1):
-    """Time-weighted mean of y over [t0, t1] (trapezoids between the rows)."""
-    m = (t >= t0) & (t <= t1)
-    tt, yy = t[m], y[m]
-    if len(tt) < 2:
-        return float("nan")
-    return float(np.trapz(yy, tt) / (tt[-1] - tt[0]))
 
 
 def main():

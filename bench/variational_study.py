@@ -15,17 +15,11 @@ there over the value at the middle row), the largest area drift, the final energ
 docs/implicit.md ("The variational force") and results/implicit.md read this CSV.
 """
 import argparse
-import csv
 import math
 import os
-import shutil
-import subprocess
-import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "scenes"))
-import solids_csv  # noqa: E402
-from coupling import with_coupling  # bench/coupling.py
+import disc_study  # noqa: E402  (bench/disc_study.py)
 
 SEMI = ['time.viscous="implicit"', 'time.solid_stress="semi_implicit"']
 METHODS = {
@@ -61,26 +55,7 @@ PLAN = [(list(METHODS), "100,1e5", "0.5,1,4,8,16"),
 
 
 def run(binary, raw, tag, sets):
-    out = os.path.join(raw, tag)
-    shutil.rmtree(out, ignore_errors=True)
-    cmd = [binary, "run", os.path.join(ROOT, "scenes", "disc_tgv.toml"), "-o", out, "-j", "1", "-q"]
-    for s in with_coupling(sets):
-        cmd += ["--set", s]
-    p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
-    if not os.path.exists(os.path.join(out, "diagnostics.csv")):
-        return dict(rc=p.returncode, failure=p.stderr.strip().splitlines()[-1] if p.stderr.strip() else "")
-    head, rows = solids_csv.read_rows(os.path.join(out, "diagnostics.csv"))
-    res = dict(rc=p.returncode, failure=p.stderr.strip().splitlines()[-1] if p.returncode else "")
-    if not rows:
-        return res
-    col = {h: [r[k] for r in rows] for k, h in enumerate(head)}
-    e = col["total_energy"]
-    area = solids_csv.wide_columns(out, col["step"]).get("solid0_area", [])
-    mid = len(e) // 2
-    res.update(steps=int(col["step"][-1]), t_end=col["time"][-1], e_max=max(e) / e[0],
-               late_growth=max(e[mid:]) / e[mid] if e[mid] > 0 else float("nan"), e_end=e[-1] / e[0],
-               area_drift=max(abs(a - area[0]) / area[0] for a in area if not math.isnan(a)) if area else float("nan"))
-    return res
+    return disc_study.run_disc_tgv(binary, raw, tag, sets)[0]
 
 
 def main():
@@ -97,10 +72,7 @@ def main():
     path = os.path.join(a.out, "implicit_variational.csv")
     cols = ["method", "grid", "mu_s_over_rho_s", "P", "rc", "steps", "t_end", "e_max", "late_growth", "e_end",
             "area_drift", "failure"]
-    old = []
-    if os.path.exists(path):  # rows of other (method, grid, mu, P) are kept
-        with open(path) as f:
-            old = list(csv.DictReader(f))
+    old = disc_study.read_rows(path)  # rows of other (method, grid, mu, P) are kept
     new = []
     n = a.grid
     plan = [(a.methods.split(","), a.mus, a.ps)] if a.methods else PLAN
@@ -121,13 +93,7 @@ def main():
                 print(", ".join(f"{k}={row.get(k, '')}" for k in cols if k != "failure"), row.get("failure", ""),
                       flush=True)
                 new.append(row)
-    keys = {(r["method"], str(r["grid"]), r["mu_s_over_rho_s"], r["P"]) for r in new}
-    rows = [r for r in old if (r["method"], r["grid"], r["mu_s_over_rho_s"], r["P"]) not in keys] + new
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=cols, extrasaction="ignore")
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in r.items() if k in cols})
+    disc_study.write_merged(path, cols, old, new)
 
 
 if __name__ == "__main__":
