@@ -520,15 +520,17 @@ def limits(rows):
 COLOURS = {"stable": "tab:green", "inaccurate": "tab:orange", "stopped": "tab:red", "crashed": "black"}
 
 
-def default_solid_cfl(binary):
-    """The default of solids.solid_cfl, read from the binary's key table (one home:
-    solver/model/config.hpp), or None if the binary cannot say."""
+def key_defaults(binary):
+    """The defaults of solids.solid_cfl (a number) and time.elastic_coupling (a name), read
+    from the binary's key table (one home: solver/model/config.hpp); None where the binary
+    cannot say."""
     try:
         out = subprocess.run([binary, "keys"], capture_output=True, text=True, timeout=60).stdout
     except OSError:
-        return None
-    m = re.search(r"^solids\.solid_cfl\s+\(.*?default ([0-9.eE+-]+)\)", out, re.M)
-    return float(m.group(1)) if m else None
+        return None, None
+    p = re.search(r"^solids\.solid_cfl\s+\(.*?default ([0-9.eE+-]+)\)", out, re.M)
+    c = re.search(r'^time\.elastic_coupling\s+\(.*?default "(\w+)"\)', out, re.M)
+    return (float(p.group(1)) if p else None), (c.group(1) if c else None)
 
 
 def chart(rows, lims, sweep, path, title, xlabel, logx=False, by_value2=False, mark=None):
@@ -694,13 +696,15 @@ def failure_figure(binary, raw, out_png, jobs):
 
 def write_charts(rows, lims, args):
     """The charts stability_<sweep>.png from the rows and limits; the solid time-step map marks
-    the default solids.solid_cfl of args.bin."""
-    p_default = default_solid_cfl(args.bin)
+    the default solids.solid_cfl and names the default elastic coupling of args.bin (the
+    rows "verlet (...)" are that coupling, the other explicit rows Algorithm 1's)."""
+    p_default, coupling = key_defaults(args.bin)
     chart(rows, lims, "a", os.path.join(args.out, "stability_solid_cfl.png"),
           "solid time-step factor P (dt = P dx / sqrt(2 mu_s/rho_s)), disc_tgv 32^2, 400 steps; semi-implicit: "
           "dt_max from P\n(small labels: the P actually used where the advective limit binds first)",
           "P (solids.solid_cfl)", logx=True, by_value2=True,
-          mark=(p_default, f"default solid_cfl = {p_default:g}") if p_default else None)
+          mark=(p_default, f"default solid_cfl = {p_default:g}" + (f", coupling {coupling}" if coupling else ""))
+          if p_default else None)
     chart(rows, lims, "b", os.path.join(args.out, "stability_deformation.png"),
           "large deformation: disc_tgv 64^2 to t = 2, flow amplitude raised (labels: largest stretch before failure)",
           "amplitude / A0 (A0 = 0.1 pi)", logx=True)

@@ -276,7 +276,7 @@ std::vector<KeyDef> build_keys() {
                          "docs/reference_map.md)"),
       num("solids", "solid_cfl", dso.solid_cfl, in(0, true, 8, false),  // above ~1 only for the stability study (bench/stability.py)
           "P of the solid time-step limit dt <= P dx / sqrt(2 mu_s / rho_s) (explicit stress; a fixed `time.dt` above "
-          "it is refused); stiff solids fail from about 0.75 (docs/stability.md)"),
+          "it is refused); with Algorithm 1's coupling stiff solids fail from about 0.75, with the default Verlet coupling and the cell stress P = 1 is stable at every stiffness (docs/stability.md)"),
       boolean("solids", "reinitialise", dso.reinitialise, "reinitialise phi0(xi) by fast marching every step"),
       only(num("solids", "pde_tol", dso.pde_tol, gt(0),
                "stop when the largest change in the band per iteration is below pde_tol times the largest "
