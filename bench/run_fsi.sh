@@ -13,6 +13,8 @@
 # the scenes write a frame every 0.02 (FSI2) or 0.005 (FSI3), 25 or 38 samples per period of
 # the lift (half that per period of u_x and the drag). To keep the disk use bounded
 # this script deletes the frames as they come, except every 50th (for snapshots).
+# A run that blows up (exit 3) is summarised over the WINDOW ending 0.1 s before its last
+# row, and its CSV ends with a '# FAILED: ...' line (the solver's message).
 # Knobs: BIN (default build/refmap), RAW (run directories, default /tmp/refmap_fsi),
 # CASES (fsi2 fsi3), END (override time.end), SETS (more scene overrides, space-separated
 # key=value), TAG (appended to the run directory's and the outputs' names), THREADS (default 1), WINDOW (seconds at the end
@@ -47,10 +49,20 @@ for c in ${CASES:-fsi2 fsi3}; do
     "${extra[@]}" > "$RAW/$c.log" 2>&1 &
   pid=$!
   prune "$out" "$pid" &
-  wait "$pid" || { tail "$RAW/$c.log" >&2; exit 1; }
+  status=0
+  wait "$pid" || status=$?
   wait
+  t_end=()
+  if [ "$status" -ne 0 ]; then
+    tail -n 3 "$RAW/$c.log" >&2
+    # a run that blew up (exit 3) is still summarised, over the window that ends a tenth of a
+    # second before its last diagnostics row (the blow-up itself left out), and its CSV says so
+    [ "$status" -eq 3 ] || exit 1
+    t_end=($(awk -F, '!/^#/ && NR > 2 {t = $2} END {printf "%.4f", t - 0.1}' "$out/diagnostics.csv"))
+  fi
   rho_s=$(grep -m1 '^density = ' <(sed -n '/^name = "flag"/,$p' "scenes/turek_hron_$c.toml") | awk '{print $3}')
-  /usr/bin/python3 bench/fsi_summary.py "$out" "${c^^}" "$rho_s" "${WINDOW:-2}" "${SMOOTH:-0.01}" > "results/turek_hron_$c$tag.csv"
+  /usr/bin/python3 bench/fsi_summary.py "$out" "${c^^}" "$rho_s" "${WINDOW:-2}" "${SMOOTH:-0.01}" "${t_end[@]}" > "results/turek_hron_$c$tag.csv"
+  [ "$status" -eq 0 ] || grep -m1 'simulation failed' "$RAW/$c.log" | sed 's/^refmap: error: /# FAILED: /' >> "results/turek_hron_$c$tag.csv"
   /usr/bin/python3 bench/fsi_plot.py "$out" "results/figures/turek_hron_$c${tag}_tip.png"
   last=$(ls "$out"/frame_[0-9]*.vti | tail -n 1)
   /usr/bin/python3 bench/fsi_snapshot.py "$last" "results/figures/turek_hron_$c${tag}_snapshot.png"
