@@ -63,7 +63,7 @@ for c in ${CASES:-fsi2 fsi3}; do
   rho_s=$(grep -m1 '^density = ' <(sed -n '/^name = "flag"/,$p' "scenes/turek_hron_$c.toml") | awk '{print $3}')
   /usr/bin/python3 bench/fsi_summary.py "$out" "${c^^}" "$rho_s" "${WINDOW:-2}" "${SMOOTH:-0.01}" "${t_end[@]}" > "results/turek_hron_$c$tag.csv"
   [ "$status" -eq 0 ] || grep -m1 'simulation failed' "$RAW/$c.log" | sed 's/^refmap: error: /# FAILED: /' >> "results/turek_hron_$c$tag.csv"
-  /usr/bin/python3 bench/fsi_plot.py "$out" "results/figures/turek_hron_$c${tag}_tip.png"
+  /usr/bin/python3 bench/fsi_plot.py "$out" "results/figures/turek_hron_$c${tag}_tip.png" "${t_end[@]}"
   last=$(ls "$out"/frame_[0-9]*.vti | tail -n 1)
   /usr/bin/python3 bench/fsi_snapshot.py "$last" "results/figures/turek_hron_$c${tag}_snapshot.png"
   cat "results/turek_hron_$c$tag.csv"
