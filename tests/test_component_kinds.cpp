@@ -13,6 +13,7 @@
 #include "solver/components/contact_component.hpp"
 #include "solver/components/control_volume_forces.hpp"
 #include "solver/components/markers.hpp"
+#include "solver/components/rigid_bodies.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/scene/scene_keys.hpp"
 #include "solver/model/simulation.hpp"
@@ -54,9 +55,11 @@ TEST(ComponentKinds, KeysAreInTheTableOnceWhereTheKindSays) {
   EXPECT_EQ(at("tracers"), at("probe") + 1);
   EXPECT_EQ(at("solid.actuation"), at("solid") + 1);
   // the registration order is the order of the hooks: actuation before the tracers
-  ASSERT_GE(component_kinds().size(), 5u);
-  EXPECT_EQ(component_kinds()[0].name, "actuation");
-  EXPECT_EQ(component_kinds()[1].name, "tracers");
+  // (contact's kind is first: it only reads [contact], the Simulation adds the component)
+  ASSERT_GE(component_kinds().size(), 6u);
+  EXPECT_EQ(component_kinds()[0].name, "contact");
+  EXPECT_EQ(component_kinds()[1].name, "actuation");
+  EXPECT_EQ(component_kinds()[2].name, "tracers");
 }
 
 TEST(ComponentKinds, OptionsAreParsedOnceIntoTypes) {
@@ -114,6 +117,46 @@ TEST(ComponentKinds, ASceneWithoutThemHasNone) {
   EXPECT_TRUE(c.components.empty());
   Simulation sim(c);
   EXPECT_TRUE(sim.components().empty());
+}
+
+/// Records the step points it is called at, in order.
+class PointLog : public Component {
+ public:
+  const char* name() const override { return "point log"; }
+  void at(StepPoint p, Simulation&, double) override { points.push_back(p); }
+  std::vector<StepPoint> points;
+};
+
+// The rigid bodies are a component (solver/components/rigid_bodies.hpp): made before the
+// initial state, attached right after contact (its cut faces come after the contact force in
+// G_f), its state after the contact's; and a step calls the points in the order of
+// solver/model/component.hpp, each once except G_f's (predictor and cell velocities).
+TEST(Components, RigidBodiesComeAfterContactAndTheStepCallsThePointsInOrder) {
+  const std::string body = "[[solid]]\nname = \"post\"\nshape = \"circle\"\ncenter = [0.5, 0.5]\nradius = 0.15\n"
+                           "density = 1.0\nmotion = \"fixed\"\nforcing = \"sharp\"\n";
+  const Config c = load_scene_string(box_scene(16, kWalls, body), "post.toml");
+  Simulation sim(c);
+  ASSERT_EQ(sim.components().size(), 2u);
+  EXPECT_NE(dynamic_cast<const ContactComponent*>(sim.components()[0].get()), nullptr);
+  const auto* rb = dynamic_cast<const RigidBodiesComponent*>(sim.components()[1].get());
+  ASSERT_NE(rb, nullptr);
+  EXPECT_EQ(sim.bodies(), &rb->bodies());
+  const std::vector<std::string> tags = sim.state().tags();
+  const auto at = [&](const char* t) { return std::find(tags.begin(), tags.end(), t) - tags.begin(); };
+  ASSERT_LT(at("bodies"), std::ptrdiff_t(tags.size()));
+  EXPECT_GT(at("bodies"), at("contact"));
+
+  auto log = std::make_unique<PointLog>();
+  PointLog* p = log.get();
+  sim.add_component(std::move(log));
+  sim.step();
+  using P = StepPoint;
+  const std::vector<StepPoint> expected = {P::Begin,  P::Advected,           P::Stressed,
+                                           P::PoissonCoefficients,        P::Forces,
+                                           P::FaceAccelerations,          P::BeforePredictor,
+                                           P::Predicted, P::PressureUpdated, P::FaceAccelerations,
+                                           P::End};
+  EXPECT_EQ(p->points, expected);
 }
 
 }  // namespace

@@ -363,16 +363,27 @@ TEST(ContactScene, KeysAreValidatedWithOneLineErrors) {
     }
     return std::string();
   };
+  // without a [contact] table the kind returns no options and the component takes the
+  // defaults (solver/components/contact_component.cpp)
   const Config def = load_scene_string(kGapScene, "gaps.toml");
-  EXPECT_TRUE(def.contact.enabled);
-  EXPECT_TRUE(def.contact.walls);
-  EXPECT_DOUBLE_EQ(def.contact.range, 2.5);
-  EXPECT_DOUBLE_EQ(def.contact.stiffness, 20.0);
+  EXPECT_EQ(def.component_options<ContactOptions>("contact"), nullptr);
+  const ContactOptions d;
+  EXPECT_TRUE(d.enabled);
+  EXPECT_TRUE(d.walls);
+  EXPECT_DOUBLE_EQ(d.range, 2.5);
+  EXPECT_DOUBLE_EQ(d.stiffness, 20.0);
+  Simulation sim(def);
+  ASSERT_NE(sim.contact(), nullptr);
+  EXPECT_TRUE(sim.contact()->force_enabled());
+  EXPECT_DOUBLE_EQ(sim.contact()->range(), 2.5 * def.grid.dx);
   const Config c = load_scene_string(kGapScene, "gaps.toml",
                                      {"contact.range=3", "contact.stiffness=50", "contact.walls=false"});
-  EXPECT_DOUBLE_EQ(c.contact.range, 3.0);
-  EXPECT_DOUBLE_EQ(c.contact.stiffness, 50.0);
-  EXPECT_FALSE(c.contact.walls);
+  const ContactOptions* co = c.component_options<ContactOptions>("contact");
+  ASSERT_NE(co, nullptr);
+  EXPECT_DOUBLE_EQ(co->range, 3.0);
+  EXPECT_DOUBLE_EQ(co->stiffness, 50.0);
+  EXPECT_FALSE(co->walls);
+  EXPECT_TRUE(co->enabled);
   EXPECT_NE(message({"contact.range=6"}).find("contact.range: must be in (0, solids.band = 6)"), std::string::npos);
   EXPECT_NE(message({"contact.range=0"}).find("contact.range"), std::string::npos);
   EXPECT_NE(message({"contact.stiffness=-1"}).find("contact.stiffness: must be >= 0"), std::string::npos);

@@ -32,7 +32,7 @@ struct Forces {
 Forces forces(const Config& cfg, const Simulation& sim, bool narrow, int threads, bool broad = true) {
   const int saved = omp_get_max_threads();
   omp_set_num_threads(threads);
-  Contact c(cfg, 1.0);  // velocity scale unused: the scene sets contact.velocity_scale
+  Contact c(cfg, contact_options(cfg), 1.0);  // velocity scale unused: the scene sets contact.velocity_scale
   c.set_narrow_boxes(narrow);
   c.set_broad_phase(broad);
   const Grid& g = cfg.grid;
@@ -137,7 +137,7 @@ TEST(ContactTasks, BroadPhaseChangesNoBitOnRandomDiscs) {
         "random_discs.toml");
     ASSERT_EQ(cfg.solids.size(), 24u);
     Simulation sim(cfg);
-    Contact all(cfg, 1.0), cells(cfg, 1.0);
+    Contact all(cfg, contact_options(cfg), 1.0), cells(cfg, contact_options(cfg), 1.0);
     all.set_broad_phase(false);
     int with_force = 0;
     std::size_t max_touching = 0;
@@ -181,7 +181,7 @@ TEST(ContactTasks, TouchingPairsSurviveACheckpoint) {
                                  "[contact]\nenabled = true\nvelocity_scale = 1.0\n" + random_discs(24, 2027), 0.01, 0.2),
       "random_discs.toml");
   Simulation sim(cfg);
-  Contact a(cfg, 1.0);
+  Contact a(cfg, contact_options(cfg), 1.0);
   int n = 0;
   for (; n < 12 && a.touching_pairs().empty(); ++n) {
     a.observe(sim.time(), sim.solids(), sim.solid_diagnostics());
@@ -193,7 +193,7 @@ TEST(ContactTasks, TouchingPairsSurviveACheckpoint) {
   CheckpointWriter w;
   a.save_state(w);
   w.save(path);
-  Contact b(cfg, 1.0);
+  Contact b(cfg, contact_options(cfg), 1.0);
   CheckpointReader r(path);
   b.load_state(r);
   std::filesystem::remove(path);

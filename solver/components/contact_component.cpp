@@ -9,7 +9,9 @@
 
 #include "kernels/loop.hpp"
 #include "solver/io/checkpoint_io.hpp"
+#include "solver/io/toml_reader.hpp"
 #include "solver/io/state_registry.hpp"
+#include "solver/model/component_kind.hpp"
 #include "solver/model/simulation.hpp"
 
 namespace refmap {
@@ -34,7 +36,8 @@ double initial_velocity_scale(const Simulation& sim) {
 
 }  // namespace
 
-ContactComponent::ContactComponent(Simulation& sim) : contact_(sim.config(), initial_velocity_scale(sim)) {
+ContactComponent::ContactComponent(Simulation& sim)
+    : contact_(sim.config(), contact_options(sim.config()), initial_velocity_scale(sim)) {
   const Grid& g = sim.grid();
   if (contact_.force_enabled()) {
     cfx_.resize(g.nx + 1, g.ny, Grid::ng);
@@ -154,6 +157,58 @@ void ContactComponent::finish(Simulation& sim, const std::string& out_dir) {
   for (const ContactEvent& e : contact_.events())
     std::fprintf(f, "%.10g,%d,%s,%.10g,%s\n", e.time, e.solid, e.event.c_str(), e.value, e.with.c_str());
   std::fclose(f);
+}
+
+namespace {
+
+/// [contact]: its options when the scene has the table (null: the defaults). The Simulation
+/// adds the component itself, whatever the scene says (make_contact).
+std::shared_ptr<const ComponentOptions> parse_contact(const TomlTable& top, const Config& cfg) {
+  const toml::table* t = top.table("contact", false);
+  if (!t) return nullptr;
+  const TomlTable c = top.sub(*t, "contact", "contact");
+  c.allow();
+  auto o = std::make_shared<ContactOptions>();
+  o->enabled = c.boolean("enabled");
+  o->walls = c.boolean("walls");
+  o->range = c.number("range");
+  c.require(o->range > 0 && o->range < cfg.solid_opt.band, "range",
+            "must be in (0, solids.band = " + toml_text::fmt_num(cfg.solid_opt.band) +
+                ") cells (the level sets are only known within the band), got " + toml_text::fmt_num(o->range));
+  o->stiffness = c.number("stiffness");
+  o->velocity_scale = c.number("velocity_scale");
+  return o;
+}
+
+/// Nothing: contact is not switched on by the scene. The Simulation adds it first for every
+/// run with solids (Simulation::add_components, also for a Config made without the loader),
+/// so that its hooks come first at each step point; it reads its options from the Config.
+std::unique_ptr<Component> make_contact(const ComponentOptions&, Simulation&) { return nullptr; }
+
+}  // namespace
+
+ComponentKind contact_kind() {
+  using namespace keys;
+  const ContactOptions d;
+  ComponentKind k;
+  k.name = "contact";
+  k.tables = {{{"contact", "`[contact]`", false, false, false,
+                "On by default whenever there are solids and `solver.flow = \"solve\"`."},
+               "suspension"}};
+  k.keys = {
+      boolean("contact", "enabled", d.enabled, "contact force on (the gaps and events are reported either way)"),
+      boolean("contact", "walls", d.walls,
+              "also repulsion from the no_slip, moving_wall and free_slip sides (periodic sides never repel)"),
+      num("contact", "range", d.range, text_range("in (0, `solids.band`)"),
+          "d in cells: the force acts once a gap is below d Δx; also the threshold of the contact events"),
+      num("contact", "stiffness", d.stiffness, ge(0),
+          "P, the contact pressure at zero gap, in units of ρ_max U² (independent of the solids' `mu_s`)"),
+      num("contact", "velocity_scale", d.velocity_scale, ge(0, "0 = automatic"),
+          "U; 0 = automatic: the initial and free-fall speeds, raised to the fastest solid seen"),
+  };
+  k.parse = parse_contact;
+  k.make = make_contact;
+  return k;
 }
 
 }  // namespace refmap

@@ -13,7 +13,8 @@
 //    time.splitting = "increment");
 //  * writes contact_energy after total_energy in diagnostics.csv, gap_solid and gap_wall
 //    after sigma_max in solids.csv, and events.csv at the end of the run.
-// Its scene keys ([contact]) are still the core's (solver/scene/scene_keys.cpp).
+// Its scene keys ([contact]) are its kind's (contact_kind in contact_component.cpp: keys,
+// parser into ContactOptions); the kind makes nothing, the Simulation adds the component.
 #include <string>
 #include <vector>
 
@@ -26,7 +27,8 @@ namespace refmap {
 class ContactComponent : public Component {
  public:
   /// At the end of sim's constructor (the initial state is final): the velocity scale of
-  /// the contact pressure from it, and the first observation of the gaps.
+  /// the contact pressure from it, and the first observation of the gaps. Its options are
+  /// the Config's "contact" entry (the defaults without one).
   explicit ContactComponent(Simulation& sim);
 
   const Contact& contact() const { return contact_; }

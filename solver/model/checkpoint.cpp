@@ -47,11 +47,8 @@ void Simulation::register_solids_state() {
         [&s, tag](CheckpointReader& r) { s.load_state(r, tag); });
   }
   // the contact tracker's records are the contact component's
-  // (solver/components/contact_component.hpp)
-  if (bodies_)  // rigid bodies' poses (solver/model/rigid_body.hpp)
-    state_.add_record(
-        "bodies", [this](CheckpointWriter& w) { bodies_->save_state(w); },
-        [this](CheckpointReader& r) { bodies_->load_state(r); });
+  // (solver/components/contact_component.hpp), the rigid bodies' ("bodies") theirs
+  // (solver/components/rigid_bodies.hpp)
 }
 
 void Simulation::save_state(CheckpointWriter& w) const { state_.save(w); }

@@ -19,6 +19,7 @@
 // from outside, as the tests do.
 #include <functional>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,7 @@
 namespace refmap {
 
 class Simulation;
+class Solid;
 class StateRegistry;
 
 /// The points of Simulation::step at which components are called.
@@ -38,6 +40,11 @@ enum class StepPoint {
   Advected,
   /// After eq. (5.2): u(), v() hold u**, solid_stress_*() the stress the step used.
   Stressed,
+  /// Each time the Poisson coefficients beta_f = 1/rho_f are built from the density
+  /// (beta_x_mut, beta_y_mut), before the pressure solver takes them: in the initial
+  /// projection and in every step's Poisson setup (the rigid bodies' cut faces). Not timed
+  /// on its own (booked in the phase that builds them).
+  PoissonCoefficients,
   /// After the Poisson setup of the new density (the face coefficients beta_f = 1/rho_f of
   /// the solids at xi^{n+1}), before the face accelerations G_f of eq. (5.3) are
   /// assembled: face forces of the new configuration are computed here (contact).
@@ -47,8 +54,21 @@ enum class StepPoint {
   /// for the predictor (step 5, eq. 5.3), for the cell velocities (step 9, eq. 5.7), and
   /// with time.splitting = "increment" at the step's start (G_f^n, inside the advection).
   /// A face force F_f enters as G_f -= beta_f F_f. Not timed on its own: its time is
-  /// booked in the phase that assembles G_f.
+  /// booked in the phase that assembles G_f. Also once in the initial projection (G_f of
+  /// the pressure correction alone), where only the components the Simulation makes before
+  /// the initial state (the rigid bodies) are attached.
   FaceAccelerations,
+  /// After the predictor's G_f (step 5, eq. 5.3) is assembled, before the predicted face
+  /// velocities: a forcing of the cell velocities that aims at the predictor's G_f (the
+  /// rigid bodies' direct forcing, solver/model/rigid_body.hpp).
+  BeforePredictor,
+  /// After the predicted face velocities u_f* (eq. 5.3, with the Rhie-Chow term), before
+  /// their divergence is taken: face velocities a component imposes (the rigid bodies' cut
+  /// faces); also in the initial projection. Not timed on its own ("face velocities").
+  Predicted,
+  /// After p += dp (step 7, eq. 5.5), before the pressure's ghosts are filled (the
+  /// pressure inside the rigid bodies' cut cells). Not timed on its own ("projection").
+  PressureUpdated,
   /// After the step (the state is that of time t + dt, Simulation::time() included).
   End,
 };
@@ -81,6 +101,13 @@ class Component {
   virtual double max_dt(const Simulation&) const { return std::numeric_limits<double>::infinity(); }
   /// Called at each point of every step, in the step's order.
   virtual void at(StepPoint, Simulation&, double /*dt*/) {}
+  /// Whether it sets solid k's reference map itself (a rigid body's, from its pose): the
+  /// solid is then neither advected nor extrapolated by Algorithm 1 steps 1-2.
+  virtual bool moves_solid(int /*k*/) const { return false; }
+  /// Solid k's reference map after its own advection and extrapolation (if any), before its
+  /// level set is rebuilt (Algorithm 1 steps 1-2). Called for the solids concurrently,
+  /// inside the per-solid loop: it may change solid k only.
+  virtual void place_solid(int /*k*/, const std::vector<std::unique_ptr<Solid>>& /*solids*/) const {}
   /// Its diagnostics.csv columns (fixed for the run) and their values for the current state.
   virtual std::vector<std::string> columns() const { return {}; }
   virtual void values(const Simulation&, std::vector<double>& /*out*/) const {}

@@ -8,8 +8,11 @@ namespace refmap {
 // The registered kinds, ONE LINE EACH: a new component adds X(name) here and defines
 // `ComponentKind name_kind()` in its own .cpp. The order is that of their hooks at one step
 // point: actuation first (the stress of a step needs A(t + dt)), then the tracers (the
-// velocity of the step's start), the markers.
+// velocity of the step's start), the markers. Contact's kind only reads [contact] (first,
+// as the core did before the others); its component is added by the Simulation, before
+// all of these (solver/components/contact_component.hpp).
 #define REFMAP_COMPONENT_KINDS(X) \
+  X(contact)                      \
   X(actuation)                    \
   X(tracers)                      \
   X(markers)                      \

@@ -184,15 +184,6 @@ struct SolidsOptions {
   int pde_max_iter = 1000;
 };
 
-/// Solid-solid and solid-wall contact ([contact] table; see solver/model/contact.hpp).
-struct ContactOptions {
-  bool enabled = true;         ///< repulsion between solids and from walls (FlowMode::Solve only)
-  bool walls = true;           ///< also from the non-periodic sides
-  double range = 2.5;          ///< d_c in cells: the force acts once a gap is below d_c
-  double stiffness = 20.0;     ///< contact pressure at zero gap, in units of rho_max U^2
-  double velocity_scale = 0.0; ///< U; 0 = automatic (see solver/model/contact.hpp)
-};
-
 /// The options of an optional component, parsed by its kind from the component's own
 /// keys (solver/model/component_kind.hpp); each kind derives its own.
 struct ComponentOptions {
@@ -267,7 +258,6 @@ struct Config {
   // solids
   std::vector<SolidSpec> solids;
   SolidsOptions solid_opt;
-  ContactOptions contact;
   /// Solve (Navier-Stokes) or Prescribed: the initial velocity field (an expression,
   /// possibly of t) is imposed at every step and no flow is solved (kinematic tests such
   /// as the Zalesak disk).

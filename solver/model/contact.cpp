@@ -26,8 +26,13 @@ constexpr long kContactCellCost = 16;
 
 }  // namespace
 
-Contact::Contact(const Config& cfg, double velocity_scale) : g_(cfg.grid) {
-  const ContactOptions& o = cfg.contact;
+const ContactOptions& contact_options(const Config& cfg) {
+  static const ContactOptions defaults;
+  const ContactOptions* o = cfg.component_options<ContactOptions>("contact");
+  return o ? *o : defaults;
+}
+
+Contact::Contact(const Config& cfg, const ContactOptions& o, double velocity_scale) : g_(cfg.grid) {
   sides_ = face_sides(cfg.bc);
   for (int s = 0; s < 4; ++s) {
     switch (sides_.kind[s]) {

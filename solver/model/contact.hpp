@@ -116,10 +116,24 @@ struct ContactEvent {
   std::string with;   ///< the obstacle: "wall_left", "wall_right", "wall_bottom", "wall_top" or the other solid's name
 };
 
+/// Solid-solid and solid-wall contact: the options of the [contact] table, read by the
+/// contact component's kind (solver/components/contact_component.cpp: keys, parser).
+struct ContactOptions : ComponentOptions {
+  bool enabled = true;         ///< repulsion between solids and from walls (FlowMode::Solve only)
+  bool walls = true;           ///< also from the non-periodic sides
+  double range = 2.5;          ///< d_c in cells: the force acts once a gap is below d_c
+  double stiffness = 20.0;     ///< contact pressure at zero gap, in units of rho_max U^2
+  double velocity_scale = 0.0; ///< U; 0 = automatic (see above)
+};
+
+/// The run's [contact] options: those the kind read from the scene (Config::components),
+/// or the defaults (no [contact] table, or a Config made without the scene loader).
+const ContactOptions& contact_options(const Config& cfg);
+
 class Contact {
  public:
-  /// `velocity_scale`: the U of the pressure scale when contact.velocity_scale is 0.
-  Contact(const Config& cfg, double velocity_scale);
+  /// `velocity_scale`: the U of the pressure scale when o.velocity_scale is 0.
+  Contact(const Config& cfg, const ContactOptions& o, double velocity_scale);
 
   /// Potential energy of the contact force at the last add_force: sum over every solid and
   /// obstacle of chi_i p_c(s) dx^2 (the force p_c grad chi_i is minus its variation).

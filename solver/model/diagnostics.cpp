@@ -70,12 +70,8 @@ const SolidColumn kForceColumns[] = {
     {"fy",     [](const RowState& r, int k) { return body_load(r.sim, k).fy; }},
     {"torque", [](const RowState& r, int k) { return body_load(r.sim, k).torque; }},
 };
-
-/// Then, for a rigid solid (solver/model/rigid_body.hpp), its rotation.
-const SolidColumn kBodyColumns[] = {
-    {"angle",  [](const RowState& r, int k) { return r.sim.bodies()->pose(k).theta; }},
-    {"omega",  [](const RowState& r, int k) { return r.sim.bodies()->pose(k).omega; }},
-};
+// then, for a rigid solid, its rotation: the rigid bodies' component's columns
+// (solver/components/rigid_bodies.hpp), after "torque"
 // clang-format on
 
 /// Written last, only when the implicit velocity step is on (time.viscous = "implicit" or
@@ -95,12 +91,6 @@ const Column kPicardColumns[] = {
 bool is_body(const Simulation& sim, int k) { return sim.bodies() && sim.bodies()->rigid(k); }
 bool has_force(const Simulation& sim, int k) {
   return sim.control_volume_forces() ? sim.control_volume_forces()->has_load(k) : is_body(sim, k);
-}
-
-bool any_body(const Simulation& sim) {
-  for (int k = 0; k < int(sim.solids().size()); ++k)
-    if (is_body(sim, k)) return true;
-  return false;
 }
 
 bool any_force(const Simulation& sim) {
@@ -178,10 +168,10 @@ namespace refmap {
 namespace {
 
 /// The built-in per-solid columns of this run, in order, and whether each is written for
-/// every solid (else only for the solids with a force, or the rigid bodies).
+/// every solid (else only for the solids with a force).
 struct SolidPart {
   const SolidColumn* col;
-  enum { All, Force, Body } rows;
+  enum { All, Force } rows;
 };
 
 std::vector<SolidPart> solid_parts(const Simulation& sim) {
@@ -189,8 +179,6 @@ std::vector<SolidPart> solid_parts(const Simulation& sim) {
   for (const SolidColumn& col : kSolidColumns) parts.push_back({&col, SolidPart::All});
   if (any_force(sim))
     for (const SolidColumn& col : kForceColumns) parts.push_back({&col, SolidPart::Force});
-  if (any_body(sim))
-    for (const SolidColumn& col : kBodyColumns) parts.push_back({&col, SolidPart::Body});
   return parts;
 }
 
@@ -225,12 +213,12 @@ std::vector<std::vector<double>> solid_values(const Simulation& sim) {
   for (int k = 0; k < nsolids; ++k) {
     std::vector<double>& v = rows[std::size_t(k)];
     v = {double(sim.steps()), sim.time(), double(k)};
-    const bool force = has_force(sim, k), body = is_body(sim, k);
+    const bool force = has_force(sim, k);
     in_row_order(
         sim, names,
         [&](std::size_t n) {
           const SolidPart& p = parts[n];
-          const bool written = p.rows == SolidPart::All || (p.rows == SolidPart::Force ? force : body);
+          const bool written = p.rows == SolidPart::All || force;
           v.push_back(written ? p.col->value(r, k) : nan);
         },
         &Component::solid_columns_after, [&](const Component& comp) { comp.solid_values(sim, k, v); });

@@ -19,6 +19,7 @@
 #include "solver/model/component_kind.hpp"
 #include "solver/components/contact_component.hpp"
 #include "solver/components/control_volume_forces.hpp"
+#include "solver/components/rigid_bodies.hpp"
 #include "solver/io/expression.hpp"
 #include "solver/model/time_step_limits.hpp"
 
@@ -44,8 +45,13 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
     jump_x_.resize(nx + 1, ny, ng);
     jump_y_.resize(nx, ny + 1, ng);
   }
-  if (RigidBodies::needed(cfg_)) bodies_ = std::make_unique<RigidBodies>(cfg_);
-  cut_faces_ = bodies_ && bodies_->cuts_faces();
+  if (RigidBodies::needed(cfg_)) {
+    // a component made before the initial state: the initial projection cuts its faces
+    // (add_components registers its state and puts it after contact)
+    auto b = std::make_unique<RigidBodiesComponent>(cfg_);
+    bodies_ = &b->bodies();
+    components_.push_back(std::move(b));
+  }
   increment_ = cfg_.splitting == Splitting::Increment;
   hold_ = bodies_ && bodies_->holds();
   if (increment_)
@@ -97,10 +103,15 @@ void Simulation::register_state() {
 }
 
 void Simulation::add_components() {
+  // the components made before the initial state (the rigid bodies), attached after contact
+  std::vector<std::unique_ptr<Component>> early = std::move(components_);
+  components_.clear();
   // contact first whenever there are solids: its hooks come first at each step point (the
-  // gaps are observed at the step's end before any other component moves anything) and
-  // its time-step limit reads the flow's limit alone (flow_limit)
+  // gaps are observed at the step's end before any other component moves anything; its
+  // force is in G_f before the rigid bodies' cut faces) and its time-step limit reads the
+  // flow's limit alone (flow_limit)
   if (!solids_.empty()) add_component(std::make_unique<ContactComponent>(*this));
+  for (auto& c : early) add_component(std::move(c));
   // the scene's components, each made by its kind (solver/model/component_kind.hpp) in
   // registration order, which is the order of their hooks at one step point
   for (const auto& [kind, options] : cfg_.components)
@@ -232,15 +243,16 @@ void Simulation::update_solids(double dt) {
   // per solid: [xi advection without its stage re-extrapolations, extrapolation, level set]
   std::vector<std::array<double, 3>> secs(std::size_t(n), std::array<double, 3>{});
   const auto w0 = clock::now();
-  if (bodies_) bodies_->advance(t_, dt);
+  // (the rigid bodies moved to their poses of t + dt at StepPoint::Begin)
   parallel_items(n, [&](int k) { return window_work(*solids_[std::size_t(k)], kStepCellCost); }, [&](int k) {
     Solid& s = *solids_[std::size_t(k)];
     // the RK-4 stages re-extrapolate the band (Solid::advect): that time is booked under
     // "extrapolation", the rest under "xi advection"
     const double ext0 = s.extrapolation_counters().seconds;
     const auto t0 = clock::now();
-    // a rigid body's reference map is set from its pose, not advected (solver/model/rigid_body.hpp)
-    const bool rigid = bodies_ && bodies_->rigid(k);
+    // a rigid body's reference map is set from its pose, not advected (solver/components/rigid_bodies.hpp)
+    bool rigid = false;
+    for (const auto& c : components_) rigid = rigid || c->moves_solid(k);
     // time.solid_picard_iterations: a repeated pass moves xi with the blend of u^n and the
     // last pass's u^{n+1} (solver/model/solid_picard.cpp)
     if (!rigid) {
@@ -249,7 +261,7 @@ void Simulation::update_solids(double dt) {
     }
     const double t_adv = std::chrono::duration<double>(clock::now() - t0).count();
     if (!rigid) s.extrapolate();
-    if (bodies_) bodies_->place(k, solids_);  // rigid: the whole map; clamped: inside its body
+    for (const auto& c : components_) c->place_solid(k, solids_);  // the rigid bodies' maps
     const double t_ext = s.extrapolation_counters().seconds - ext0;
     const double t_stage_ext = std::min(t_ext, t_adv);
     const auto t1 = clock::now();
@@ -349,7 +361,7 @@ void Simulation::initialise() {
   gyf_.fill(0.0);
   predict_face_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), uf_.view(), vf_.view(),
                         g.nx, g.ny, 0.0, sides_);
-  if (cut_faces_) bodies_->impose_cut_faces(solids_, uf_, vf_, g);
+  call_components(StepPoint::Predicted, 0.0, false);  // the rigid bodies' cut faces
   face_divergence(uf_.view(), vf_.view(), rhs_.view(), g.nx, g.ny, g.dx, 1.0);
   dp_.fill(0.0);
   last_stats_ = poisson_->solve(rhs_, dp_);
@@ -358,7 +370,8 @@ void Simulation::initialise() {
                         g.ny, g.dx, 1.0, sides_);
   face_accel(dp_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
              g.dx, 0.0, 0.0, cfg_.rho_f, sides_);
-  if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);
+  // only the components made before the initial state are attached (the rigid bodies' cut faces)
+  call_components(StepPoint::FaceAccelerations, 0.0, false);
   correct_cell_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny, 1.0);
   apply_velocity_bc(u_, v_, t_);
   dp_.fill(0.0);
@@ -372,7 +385,7 @@ void Simulation::build_poisson_coefficients() {
   const Grid& g = cfg_.grid;
   face_beta(rho_.view(), beta_x_.view(), beta_y_.view(), g.nx, g.ny, sides_);
   // forcing = "sharp": no pressure coupling across the faces of a body's inside cells
-  if (cut_faces_) bodies_->clear_cut_faces(solids_, beta_x_, beta_y_, g);
+  call_components(StepPoint::PoissonCoefficients, 0.0, false);
   poisson_->setup(poisson_operator());
 }
 
@@ -467,7 +480,7 @@ double Simulation::step_once(double dt) {
   if (!solids_.empty()) setup_poisson();
   call_components(StepPoint::Forces, dt);  // face forces of the new configuration (contact)
   face_accelerations(dt);                // step 5's G_f, eq. (5.3)
-  if (bodies_) force_bodies(dt);         // rigid bodies' velocity (solver/model/rigid_body.hpp)
+  call_components(StepPoint::BeforePredictor, dt);  // rigid bodies' forcing ("bodies")
   predict_face_velocities(dt);           // step 5
   solve_pressure();                      // step 6
   project(dt);                           // steps 7-9
@@ -628,8 +641,7 @@ void Simulation::begin_substeps(double dt) {
   fill_scalar_ghosts(p_, cfg_.bc);
   face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), nx, ny, g.dx, cfg_.gx,
              cfg_.gy, cfg_.rho_f, sides_);
-  call_components(StepPoint::FaceAccelerations, dt, false);  // the contact force
-  if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);
+  call_components(StepPoint::FaceAccelerations, dt, false);  // contact, the bodies' cut faces
   bool viscous = cfg_.mu_f > 0.0;
   for (const auto& s : solids_) viscous = viscous || s->spec().viscosity > 0.0;
   if (viscous) {
@@ -705,14 +717,6 @@ void Simulation::setup_poisson() {
   build_poisson_coefficients();
 }
 
-void Simulation::force_bodies(double dt) {
-  // with the face accelerations the predictor will subtract (face_accelerations, this
-  // step): the forcing aims at u_body + dt G_c so that the predicted face velocities
-  // inside a body are its velocity
-  ScopedPhase ph(timers_, "bodies");
-  bodies_->force(solids_, u_, v_, rho_, gxf_, gyf_, p_, cfg_.grid, dt);
-}
-
 void Simulation::face_accelerations(double dt) {
   // eq. (5.3)'s G_f: old pressure gradient, gravity and contact force on the faces; read by
   // the bodies' forcing and the predictor. Booked with the predictor's phase (no call of
@@ -722,9 +726,8 @@ void Simulation::face_accelerations(double dt) {
   fill_scalar_ghosts(p_, cfg_.bc);
   face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
              g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, sides_);
-  call_components(StepPoint::FaceAccelerations, dt, false);  // the contact force
-  // forcing = "sharp": G_f of the cut faces (with beta = 0 there face_accel leaves -g)
-  if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);
+  // contact; forcing = "sharp": the bodies' G_f of the cut faces (where face_accel left -g)
+  call_components(StepPoint::FaceAccelerations, dt, false);
   timers_.add("face velocities", std::chrono::duration<double>(PhaseTimers::clock::now() - t0).count(), 0);
 }
 
@@ -752,7 +755,7 @@ void Simulation::predict_face_velocities(double dt) {
   }
   // forcing = "sharp": the cut faces carry the body's velocity (beta = 0 there: the
   // projection keeps it, whatever dt)
-  if (cut_faces_) bodies_->impose_cut_faces(solids_, uf_, vf_, g);
+  call_components(StepPoint::Predicted, dt, false);
   face_divergence(uf_.view(), vf_.view(), rhs_.view(), g.nx, g.ny, g.dx, 1.0 / tau);
 }
 
@@ -774,7 +777,7 @@ void Simulation::project(double dt) {
   parallel_rows(0, g.ny, g.nx, [&](int j) {
     for (int i = 0; i < g.nx; ++i) p_(i, j) += dp_(i, j);
   });
-  if (cut_faces_) bodies_->fill_inside_pressure(solids_, p_, g);  // cut out of the solve: the fluid's
+  call_components(StepPoint::PressureUpdated, dt, false);  // the bodies' cut cells: the fluid's pressure
   fill_scalar_ghosts(p_, cfg_.bc);
   // step 8, eq. (5.6): exactly divergence-free face velocities
   correct_face_velocity(uf_.view(), vf_.view(), dp_.view(), beta_x_.view(), beta_y_.view(),
@@ -782,8 +785,7 @@ void Simulation::project(double dt) {
   // step 9, eq. (5.7): cell velocities with the new pressure
   face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny,
              g.dx, cfg_.gx, cfg_.gy, cfg_.rho_f, sides_);
-  call_components(StepPoint::FaceAccelerations, dt, false);  // the contact force
-  if (cut_faces_) bodies_->cut_face_accel(solids_, gxf_, gyf_, g);
+  call_components(StepPoint::FaceAccelerations, dt, false);  // contact, the bodies' cut faces
   correct_cell_velocity(u_.view(), v_.view(), gxf_.view(), gyf_.view(), g.nx, g.ny, dt);
   apply_velocity_bc(u_, v_, t_ + dt);
 }

@@ -83,8 +83,17 @@ class Simulation {
   /// being assembled, the face coefficients beta_f = 1/rho_f and the sides.
   Field& face_accel_x_mut() { return gxf_; }
   Field& face_accel_y_mut() { return gyf_; }
+  const Field& face_accel_x() const { return gxf_; }
+  const Field& face_accel_y() const { return gyf_; }
   const Field& beta_x() const { return beta_x_; }
   const Field& beta_y() const { return beta_y_; }
+  /// For the components at StepPoint::PoissonCoefficients (beta_f before the solver takes
+  /// it), ::Predicted (the predicted face velocities) and ::PressureUpdated (p^{n+1}).
+  Field& beta_x_mut() { return beta_x_; }
+  Field& beta_y_mut() { return beta_y_; }
+  Field& uf_mut() { return uf_; }
+  Field& vf_mut() { return vf_; }
+  Field& p_mut() { return p_; }
   const Sides& sides() const { return sides_; }
 
   /// Cell field by probe/output name: u, v, p, density, speed, vorticity (ghosts filled).
@@ -100,8 +109,9 @@ class Simulation {
   /// Contact model and gap/event tracker of the contact component
   /// (solver/components/contact_component.hpp; null without solids).
   const Contact* contact() const;
-  /// Rigid bodies' poses and loads (solver/model/rigid_body.hpp; null without a rigid body).
-  const RigidBodies* bodies() const { return bodies_.get(); }
+  /// Rigid bodies' poses and loads (solver/model/rigid_body.hpp) of the rigid bodies'
+  /// component (solver/components/rigid_bodies.hpp); null without a rigid body.
+  const RigidBodies* bodies() const { return bodies_; }
   /// Bodies' forces from the fluid's momentum balance (output.body_force = "control_volume";
   /// solver/components/control_volume_forces.hpp), else null.
   const ControlVolumeForces* control_volume_forces() const;
@@ -153,7 +163,8 @@ class Simulation {
   void register_state();
   /// The solids' and the rigid bodies' records (solver/model/checkpoint.cpp).
   void register_solids_state();
-  /// The components: contact with solids (solver/components/contact_component.hpp), then
+  /// The components: contact with solids (solver/components/contact_component.hpp), the
+  /// rigid bodies (made before the initial state; solver/components/rigid_bodies.hpp), then
   /// the scene's (Config::components, each made by its kind:
   /// solver/model/component_kind.hpp), in the order of their hooks.
   void add_components();
@@ -193,8 +204,6 @@ class Simulation {
   void solve_pressure();
   /// Steps 7-9, eqs. (5.5)-(5.7), "projection": new pressure, face and cell velocities.
   void project(double dt);
-  /// "bodies": the direct forcing of the rigid bodies' velocity (solver/model/rigid_body.hpp).
-  void force_bodies(double dt);
   /// time.splitting = "increment" and held cells ([[solid]] forcing_hold), before the
   /// advection: the cell average G_c^n of the face accelerations of the step's start, the
   /// viscous force of u^n, the advection's momentum source and the list of held cells.
@@ -251,8 +260,9 @@ class Simulation {
   Field sxx_, sxy_, syy_;                  // blended solid stress (global, if any solid is elastic)
   double elastic_energy_ = 0.0;
   bool prescribed_depends_on_time_ = false;  ///< flow = "prescribed" with an expression of t
-  std::unique_ptr<RigidBodies> bodies_;    // null unless a solid is rigid
-  bool cut_faces_ = false;                 // a rigid body with forcing = "sharp" (bodies_->cuts_faces())
+  /// the rigid bodies' component's (solver/components/rigid_bodies.hpp); null unless a solid
+  /// is rigid. The held cells below still call it directly.
+  RigidBodies* bodies_ = nullptr;
   bool increment_ = false;                 // time.splitting = "increment"
   bool hold_ = false;                      // a rigid body with forcing_hold (bodies_->holds())
   Field gcx_n_, gcy_n_;                    // increment: G_c^n, the cell average of the face accelerations

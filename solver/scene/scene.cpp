@@ -374,22 +374,6 @@ void parse_solids_options(const Ctx& ctx, const Table& top, Config& cfg) {
   o.pde_max_iter = int(s.integer("pde_max_iter"));
 }
 
-void parse_contact(const Ctx& ctx, const Table& top, Config& cfg) {
-  const toml::table* tp = top.table("contact", false);
-  if (!tp) return;
-  Table c(ctx, *tp, "contact", "contact");
-  c.allow();
-  ContactOptions& o = cfg.contact;
-  o.enabled = c.boolean("enabled");
-  o.walls = c.boolean("walls");
-  o.range = c.number("range");
-  c.require(o.range > 0 && o.range < cfg.solid_opt.band, "range",
-            "must be in (0, solids.band = " + fmt_num(cfg.solid_opt.band) +
-                ") cells (the level sets are only known within the band), got " + fmt_num(o.range));
-  o.stiffness = c.number("stiffness");
-  o.velocity_scale = c.number("velocity_scale");
-}
-
 /// The implicit solid coefficient's blend 1 - H(phi - reach dx) must vanish where phi is
 /// capped at the band's edge (phi = band), or it would reach cells whose phi is unknown.
 void check_implicit_reach(const Ctx& ctx, const Table& top, const Config& cfg) {
@@ -939,7 +923,6 @@ Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>&
   check_elastic_coupling(ctx, top, cfg);  // after parse_solids_options: the xi velocity
   parse_suspension(ctx, root, top, cfg);  // before parse_solids: its particles are [[solid]] tables
   parse_solids(ctx, top, cfg);
-  parse_contact(ctx, top, cfg);  // after parse_solids_options: the range is checked against the band
   parse_components(top, cfg);     // after the core: a component's checks may use any of it
   check_start_state(ctx, top, cfg);
   check_fixed_step(ctx, top, cfg);  // after parse_solids: the solids' limits

@@ -34,7 +34,6 @@ std::vector<KeyDef> build_keys() {
   const ShapeParams& dsh = ds.shape;
   const PoissonOptions& dp = d.poisson;
   const SolidsOptions& dso = d.solid_opt;
-  const ContactOptions& dc = d.contact;
   const InitialVelocity& di = d.init;
   const SideBc db;
   const SuspensionSpec dsu;
@@ -402,14 +401,7 @@ std::vector<KeyDef> build_keys() {
       num("suspension", "viscosity", dsu.viscosity, ge(0), "each particle's (Kelvin-Voigt) `viscosity`"),
 
 
-      boolean("contact", "enabled", dc.enabled, "contact force on (the gaps and events are reported either way)"),
-      boolean("contact", "walls", dc.walls,
-              "also repulsion from the no_slip, moving_wall and free_slip sides (periodic sides never repel)"),
-      num("contact", "range", dc.range, text_range("in (0, `solids.band`)"),
-          "d in cells: the force acts once a gap is below d Δx; also the threshold of the contact events"),
-      num("contact", "stiffness", dc.stiffness, ge(0),
-          "P, the contact pressure at zero gap, in units of ρ_max U² (independent of the solids' `mu_s`)"),
-      num("contact", "velocity_scale", dc.velocity_scale, ge(0, "0 = automatic"), "U; 0 = automatic: the initial and free-fall speeds, raised to the fastest solid seen"),
+      // [contact]: solver/components/contact_component.cpp (contact_kind)
   };
   return k;
 }
@@ -459,8 +451,7 @@ std::vector<TableDef> core_tables() {
        "expanded at load into soft `[[solid]]` tables named `<name><i>` (circles, or ellipses with `aspect` > 1) "
        "that start with the fluid's velocity. Deterministic from `seed`. A fraction the placement cannot reach "
        "in `attempts` tries per particle is an error (exit 2) naming the fraction reached."},
-      {"contact", "`[contact]`", false, false, false,
-       "On by default whenever there are solids and `solver.flow = \"solve\"`."},
+      // [contact]: solver/components/contact_component.cpp
   };
 }
 

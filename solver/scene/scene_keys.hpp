@@ -16,7 +16,7 @@
 // solver/io/key_def.hpp.
 //
 // Checks that involve several keys (time.end > time.start, transition < band - 1,
-// contact.range < band, probes inside the domain, the per-shape keys of a [[solid]]) stay
+// probes inside the domain, the per-shape keys of a [[solid]]) stay
 // as code next to the parse functions of scene.cpp; their entries here carry the range as
 // text for the reference only.
 #include <string>

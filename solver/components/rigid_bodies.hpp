@@ -1,0 +1,58 @@
+#pragma once
+// The rigid bodies as a component (solver/model/component.hpp): the poses, the direct forcing
+// and the cut faces of solver/model/rigid_body.hpp in the step. The Simulation makes it
+// whenever a solid is rigid, before the initial state (the initial projection cuts its
+// faces), and attaches it right after contact, so that at StepPoint::FaceAccelerations its
+// cut faces come after the contact force, as in Algorithm 1's order. It
+//  * moves every body to its pose of t + dt at StepPoint::Begin (RigidBodies::advance);
+//  * sets the reference map of a rigid solid (the whole window) and of a soft solid
+//    clamped to a body (inside the body) in the per-solid loop of Algorithm 1 steps 1-2
+//    (moves_solid, place_solid: a rigid solid is neither advected nor extrapolated);
+//  * with forcing = "sharp": zeroes the cut faces' Poisson coefficients
+//    (StepPoint::PoissonCoefficients), sets their G_f (StepPoint::FaceAccelerations) and
+//    their face velocities (StepPoint::Predicted), and fills the pressure inside
+//    (StepPoint::PressureUpdated);
+//  * forces the cell velocities towards the bodies' (StepPoint::BeforePredictor, timed as
+//    "bodies"), aiming at the predictor's G_f;
+//  * registers the bodies' state (record "bodies");
+//  * writes angle and omega after torque in solids.csv (nan on a soft solid's rows).
+// Still in the Simulation: the held cells of forcing_hold (the RK-4 stages' rates, the
+// explicit stress step, the implicit solve: Simulation::hold_rates, begin_substeps) and the
+// solids.csv columns fx, fy, torque, shared with the control-volume forces
+// (solver/model/diagnostics.cpp); docs/components.md.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "solver/model/component.hpp"
+#include "solver/model/rigid_body.hpp"
+
+namespace refmap {
+
+class RigidBodiesComponent : public Component {
+ public:
+  explicit RigidBodiesComponent(const Config& cfg) : bodies_(cfg), cuts_(bodies_.cuts_faces()) {}
+
+  RigidBodies& bodies() { return bodies_; }
+  const RigidBodies& bodies() const { return bodies_; }
+
+  // Component
+  const char* name() const override { return "bodies"; }
+  void register_state(StateRegistry& reg) override;
+  void at(StepPoint p, Simulation& sim, double dt) override;
+  bool moves_solid(int k) const override { return bodies_.rigid(k); }
+  void place_solid(int k, const std::vector<std::unique_ptr<Solid>>& solids) const override {
+    bodies_.place(k, solids);  // rigid: the whole map; clamped: inside its body
+  }
+  std::vector<std::string> solid_columns() const override { return {"angle", "omega"}; }
+  void solid_values(const Simulation&, int k, std::vector<double>& out) const override;
+  /// After the loads (fx, fy, torque); without them (no solid has a load) at the end, which
+  /// is the same place: after sigma_max and the contact's gaps
+  const char* solid_columns_after() const override { return "torque"; }
+
+ private:
+  RigidBodies bodies_;
+  bool cuts_;  ///< a body with forcing = "sharp"
+};
+
+}  // namespace refmap
