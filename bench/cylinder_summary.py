@@ -14,6 +14,9 @@ Usage: cylinder_summary.py [--keep CSV] [--convergence CSV] [--plot PNG] RUN_DIR
   --keep: the rows of an earlier summary (its runs' directories gone) are kept unless a RUN_DIR of
     the same name replaces them (bench/run_cylinder.sh KEEP=1: add variants without re-running
     the others).
+  dp_fluid: Delta p from the fluid's pressure extrapolated to the surface points; L_a_centre:
+    L_a from u on y = 0.2 itself, not the mean of the two rows beside it (probes that
+    bench/run_cylinder.sh adds; both empty for runs without them).
   --convergence: per forcing and quantity, the error against the centre of the bounds on each
     grid (runs named <forcing>_dx_<dx>), the observed order between successive grids,
     log2(|e(dx)| / |e(dx/2)|), and from three successive grids the order of the differences,
@@ -31,7 +34,8 @@ import solids_csv  # noqa: E402  (solids.csv pivoted to solid<k>_<quantity> colu
 
 RHO, U_MEAN, D = 1.0, 0.2, 0.1
 X_BACK = 0.25
-BOUNDS = {"c_D": (5.57, 5.59), "c_L": (0.0104, 0.0110), "dp": (0.1172, 0.1176), "L_a": (0.0842, 0.0852)}
+BOUNDS = {"c_D": (5.57, 5.59), "c_L": (0.0104, 0.0110), "dp": (0.1172, 0.1176), "L_a": (0.0842, 0.0852),
+          "dp_fluid": (0.1172, 0.1176), "L_a_centre": (0.0842, 0.0852)}
 
 
 def read_csv(path):
@@ -84,6 +88,30 @@ def summarise(run):
     if os.path.exists(run + "/load.txt"):
         with open(run + "/load.txt") as f:
             load = "-".join(f.read().split())
+    # dp_fluid: the fluid's pressure extrapolated to the two surface points, the quadratic through
+    # the samples 1, 2 and 3 dx from each along y = 0.2 (probes p_front_fluid, p_back_fluid that
+    # bench/run_cylinder.sh adds; p(0) = 3 p(1) - 3 p(2) + p(3)): the probes of dp sit on the
+    # surface, where the bilinear stencil mixes a fluid cell with a cell inside the body (the
+    # sharp forcing fills those with the fluid's pressure at an image point sqrt(2) dx out), so dp
+    # reads the pressure about one dx outside the surface
+    dp_fluid = ""
+    if os.path.exists(run + "/probe_p_front_fluid.csv") and os.path.exists(run + "/probe_p_back_fluid.csv"):
+        _, pf = read_csv(run + "/probe_p_front_fluid.csv")  # from 3 dx to 1 dx in front of x = 0.15
+        _, pb = read_csv(run + "/probe_p_back_fluid.csv")  # from 1 dx to 3 dx behind x = 0.25
+        front = 3 * float(pf[2][2]) - 3 * float(pf[1][2]) + float(pf[0][2])
+        back = 3 * float(pb[0][2]) - 3 * float(pb[1][2]) + float(pb[2][2])
+        dp_fluid = f"{front - back:.5f}"
+    # L_a_centre: the same from u on y = 0.2 itself. y = 0.2 is a face row on every grid, so the
+    # probe's bilinear value there is the mean of the rows y = 0.2 -+ dx/2, which exceeds u on the
+    # line by (dx/2)^2 u_yy / 2 where the wake's deficit makes u_yy > 0 (the zero moves upstream);
+    # with the rows -+ 3 dx/2 (probes u_wake_below, u_wake_above that bench/run_cylinder.sh adds)
+    # the cubic midpoint value (9 (u_1 + u_2) - (u_0 + u_3)) / 16 removes that bias
+    la_centre = ""
+    if os.path.exists(run + "/probe_u_wake_below.csv") and os.path.exists(run + "/probe_u_wake_above.csv"):
+        _, lo = read_csv(run + "/probe_u_wake_below.csv")
+        _, hi = read_csv(run + "/probe_u_wake_above.csv")
+        uc = [(18 * m - float(a[2]) - float(b[2])) / 16 for m, a, b in zip(us, lo, hi)]
+        la_centre = f"{recirculation(xs, uc):.5f}"
     return {
         "run": name,
         "forcing": forcing,
@@ -102,10 +130,12 @@ def summarise(run):
         "c_L": f"{float(last['solid0_fy']) / q:.5f}",
         "dp": f"{float(pp[0][2]) - float(pp[1][2]):.5f}",
         "L_a": f"{recirculation(xs, us):.5f}",
+        "dp_fluid": dp_fluid,
+        "L_a_centre": la_centre,
     }
 
 
-QUANTITIES = ("c_D", "c_L", "dp", "L_a")
+QUANTITIES = ("c_D", "c_L", "dp", "L_a", "dp_fluid", "L_a_centre")
 
 
 def centre(q):
@@ -135,6 +165,8 @@ def write_convergence(out, path):
                 prev = None
                 vals = []
                 for r in rows:
+                    if not r.get(q):  # a kept row from before the column existed
+                        continue
                     v = float(r[q])
                     e = v - centre(q)
                     order = ""
@@ -158,12 +190,12 @@ def plot(out, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 4, figsize=(16, 4))
+    fig, axes = plt.subplots(1, 4, figsize=(16, 4))  # c_D, c_L, dp, L_a (not dp_fluid)
     colours = {"diffuse": "tab:blue", "interpolated": "tab:orange", "sharp": "tab:green", "sharp+hold": "tab:purple",
                "sharp+inc": "tab:brown", "sharp+hold+inc": "tab:red", "sharp+hold+inc+rc": "tab:pink",
-               "sharp+inc+rc": "tab:olive"}
+               "sharp+inc+rc": "tab:olive", "sharp+hold+inc+rc+quad": "tab:cyan"}
     by = grid_runs(out)
-    for ax, q in zip(axes, QUANTITIES):
+    for ax, q in zip(axes, QUANTITIES[:4]):
         for forcing, rows in by.items():
             xs = [float(r["wall_s"]) for r in rows]
             ys = [abs(float(r[q]) - centre(q)) / centre(q) for r in rows]
@@ -208,15 +240,15 @@ def main():
         with open(keep) as f:
             kept = [r for r in csv.DictReader(f) if r["run"] not in names and not r["run"].startswith("reference_")]
         for r in kept:
-            r.setdefault("load", "")
-            r["load"] = r["load"] or ""
+            for c in ("load", "dp_fluid", "L_a_centre"):
+                r[c] = r.get(c) or ""
         out = sorted(kept + out, key=lambda r: r["run"])
     if conv:
         write_convergence(out, conv)
     if png:
         plot(out, png)
     cols = ["run", "forcing", "dx", "nx", "ny", "radius", "threads", "dt", "steps", "t_end", "wall_s", "ms_per_step",
-            "load", "c_D", "c_L", "dp", "L_a"]
+            "load", "c_D", "c_L", "dp", "L_a", "dp_fluid", "L_a_centre"]
     w = csv.DictWriter(sys.stdout, fieldnames=cols, lineterminator="\n")
     w.writeheader()
     for r in out:

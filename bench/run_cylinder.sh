@@ -47,13 +47,15 @@ export OMP_WAIT_POLICY=PASSIVE
 run() {  # run VARIANT NAME DX THREADS DT [extra --set ..., a later time.max_steps wins]
   local variant=$1 name=$1_$2 dx=$3 threads=$4 dt=$5
   shift 5
-  # a variant is a forcing with options: <forcing>[+hold][+inc][+rc] (+hold: solid[0].forcing_hold,
+  # a variant is a forcing with options: <forcing>[+hold][+inc][+rc][+quad] (+hold: solid[0].forcing_hold,
   # +inc: time.splitting = "increment"; docs/bodies.md, docs/method.md)
   local forcing=${variant%%+*} opts=()
   case "$variant" in *+hold*) opts+=(--set "solid[0].forcing_hold=true") ;; esac
   case "$variant" in *+inc*) opts+=(--set 'time.splitting="increment"') ;; esac
   # +rc: time.rhie_chow_dt = the grid's own dt, 0.9278 dx, also in the dt study
   case "$variant" in *+rc*) opts+=(--set "time.rhie_chow_dt=$(python3 -c "print(0.9278 * $dx)")") ;; esac
+  # +quad: solid[0].forcing_interpolation = "quadratic" (docs/bodies.md)
+  case "$variant" in *+quad*) opts+=(--set 'solid[0].forcing_interpolation="quadratic"') ;; esac
   if [ "${REUSE:-0}" = "1" ] && [ -f "$RAW/$name/timings.csv" ]; then
     echo "cylinder_re20: $name kept" >&2
     return
@@ -65,9 +67,22 @@ run() {  # run VARIANT NAME DX THREADS DT [extra --set ..., a later time.max_ste
   [ "${T_STOP:-8}" != "0" ] && stop=(--set "time.max_steps=$(python3 -c "print(round(${T_STOP:-8} / $dt))")")
   echo "cylinder_re20: $name (dx = $dx, $nx x $ny, $threads thread(s), viscous = $VISCOUS, forcing = $forcing)" >&2
   rm -rf "${RAW:?}/$name"
+  # the scene with four more probes: p at 1, 2 and 3 dx from the front and back surface points
+  # on y = 0.2, all in fluid cells, from which bench/cylinder_summary.py extrapolates the
+  # fluid's pressure to the surface (dp_fluid; the benchmark's points sit on the surface, where
+  # a probe's bilinear stencil reads a cell inside the body), and u on the rows y = 0.2 -+ 3 dx / 2
+  # beside the wake probe (L_a_centre: u on y = 0.2 itself, not the mean of the rows beside it)
+  local scene="$RAW/$name.toml"
+  { cat scenes/cylinder_re20.toml
+    python3 -c "d = $dx
+print(f'[[probe]]\nname = \"p_front_fluid\"\nfield = \"p\"\nstart = [{0.15 - 3 * d!r}, 0.2]\nend = [{0.15 - d!r}, 0.2]\npoints = 3')
+print(f'[[probe]]\nname = \"p_back_fluid\"\nfield = \"p\"\nstart = [{0.25 + d!r}, 0.2]\nend = [{0.25 + 3 * d!r}, 0.2]\npoints = 3')
+for n, y in (('below', 0.2 - 1.5 * d), ('above', 0.2 + 1.5 * d)):
+    print(f'[[probe]]\nname = \"u_wake_{n}\"\nfield = \"u\"\nstart = [0.25, {y!r}]\nend = [0.45, {y!r}]\npoints = 81')"
+  } > "$scene"
   local load0
   load0=$(cut -d' ' -f1 /proc/loadavg)
-  OMP_NUM_THREADS=$threads nice "$BIN" run scenes/cylinder_re20.toml --out "$RAW/$name" --quiet \
+  OMP_NUM_THREADS=$threads nice "$BIN" run "$scene" --out "$RAW/$name" --quiet \
     --set grid.nx="$nx" --set grid.ny="$ny" --set time.dt="$dt" --set output.vtk=false --set output.diagnostics_every=10 \
     --set time.viscous="\"$VISCOUS\"" --set "solid[0].forcing=\"$forcing\"" "${opts[@]}" "${stop[@]}" "$@" \
     > "$RAW/$name.log" 2>&1 || { cat "$RAW/$name.log" >&2; exit 1; }

@@ -41,6 +41,10 @@ enum class SolidMotion { Free, Fixed, Prescribed, Pinned };
 /// Sharp, Interpolated with the cells inside cut out of the pressure solve (their faces carry
 /// the body's velocity and are not corrected).
 enum class BodyForcing { Diffuse, Interpolated, Sharp };
+/// SolidSpec::forcing_interpolation: the profile along the normal through which the
+/// interpolated and sharp forcings set a fluid cell next to the surface (rigid_body.cpp):
+/// Linear, between the surface and one image point; Quadratic, through the surface and two.
+enum class ForcingInterpolation { Linear, Quadratic };
 /// SolidsOptions::extrapolation: Algorithm 2 (least squares) or the PDE baseline.
 enum class ExtrapolationMethod { Lsq, Pde };
 /// SolidsOptions::stress_form: discretisation of the solid stress divergence. Variational:
@@ -136,6 +140,8 @@ struct SolidSpec {
   /// forcing = "sharp" only: the cells the forcing sets are held at their values of the
   /// step's start through the advection and the viscous step (solver/model/rigid_body.hpp)
   bool forcing_hold = false;
+  /// forcing = "interpolated" or "sharp": the normal profile of the cells next to the surface
+  ForcingInterpolation forcing_interpolation = ForcingInterpolation::Linear;
   /// Prescribed: the centre's path x(t), y(t) and the rotation rate omega(t) (expressions
   /// of t; the path starts at the shape's centre).
   std::string path_x, path_y, rotation_rate;

@@ -101,6 +101,13 @@ struct RigidPose {
   std::array<double, 2> velocity(double x, double y) const;
 };
 
+/// The weights (c1, c2) by which the interpolated and sharp forcings set a fluid cell at a
+/// distance phi > 0 from the surface: u = u_b + c1 (u(phi + h) - u_b) + c2 (u(phi + 2h) - u_b),
+/// u_b the body's velocity at the surface point, u(d) the flow's at the image points a distance
+/// d from the surface along the normal (h = sqrt(2) dx). Linear: the chord to the first image
+/// (c2 = 0); Quadratic: the parabola through all three (exact for u = a n + b n^2).
+std::array<double, 2> normal_profile_weights(double phi, double h, ForcingInterpolation order);
+
 /// The fluid's force and torque (about the reference point) on a body at the last step.
 struct BodyLoad {
   double fx = 0, fy = 0, torque = 0;

@@ -59,6 +59,12 @@ std::span<const OptionName<BodyForcing>> option_names(BodyForcing) {
   return span_of(n);
 }
 
+std::span<const OptionName<ForcingInterpolation>> option_names(ForcingInterpolation) {
+  static const OptionName<ForcingInterpolation> n[] = {{ForcingInterpolation::Linear, "linear"},
+                                                       {ForcingInterpolation::Quadratic, "quadratic"}};
+  return span_of(n);
+}
+
 std::span<const OptionName<ExtrapolationMethod>> option_names(ExtrapolationMethod) {
   static const OptionName<ExtrapolationMethod> n[] = {{ExtrapolationMethod::Lsq, "lsq"},
                                                       {ExtrapolationMethod::Pde, "pde"}};

@@ -21,6 +21,7 @@ std::span<const OptionName<InitialKind>> option_names(InitialKind);
 std::span<const OptionName<SolidVelocity>> option_names(SolidVelocity);
 std::span<const OptionName<SolidMotion>> option_names(SolidMotion);
 std::span<const OptionName<BodyForcing>> option_names(BodyForcing);
+std::span<const OptionName<ForcingInterpolation>> option_names(ForcingInterpolation);
 std::span<const OptionName<ExtrapolationMethod>> option_names(ExtrapolationMethod);
 std::span<const OptionName<ConstitutiveLaw>> option_names(ConstitutiveLaw);
 std::span<const OptionName<StressForm>> option_names(StressForm);

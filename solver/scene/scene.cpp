@@ -507,6 +507,9 @@ void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
     if (rigid) sp.forcing_hold = s.boolean("forcing_hold");
     if (sp.forcing_hold && sp.forcing != BodyForcing::Sharp)
       s.fail("forcing_hold", "only with forcing = \"sharp\" (forcing is \"" + std::string(to_string(sp.forcing)) + "\")");
+    if (rigid) sp.forcing_interpolation = s.option<ForcingInterpolation>("forcing_interpolation");
+    if (sp.forcing_interpolation != ForcingInterpolation::Linear && sp.forcing == BodyForcing::Diffuse)
+      s.fail("forcing_interpolation", "only with forcing = \"interpolated\" or \"sharp\" (forcing is \"diffuse\")");
     // "sharp" cuts the inside cells out of the pressure solve: the pressure acts on the body
     // through its cut faces only, which a pinned body's rotation rate (the angular momentum
     // of the inside cells) does not see

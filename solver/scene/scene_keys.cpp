@@ -353,6 +353,13 @@ std::vector<KeyDef> build_keys() {
                    "at their values of the step's start through the advection and the viscous step, the momentum "
                    "they would have taken counted in the force (docs/bodies.md)"),
            "motion", {"fixed", "prescribed", "pinned"}),
+      only(choice<ForcingInterpolation>(
+               "solid", "forcing_interpolation", ds.forcing_interpolation,
+               "`forcing = \"interpolated\"` or `\"sharp\"`: the velocity of a fluid cell next to the surface "
+               "from the profile along the normal through the surface (the body's velocity) and one image point "
+               "(`\"linear\"`) or two (`\"quadratic\"`: the linear chord's O(dx^2) curvature error, which moves "
+               "the effective wall outward, removed; docs/bodies.md)"),
+           "motion", {"fixed", "prescribed", "pinned"}),
       only(shown_default(key("solid", "path_x", KT::Expression, {}, {},
                              "x of the centre as an expression of t; must equal `center` at the start time"),
                          "`center` (still)"),
