@@ -65,6 +65,7 @@ METHODS = {
     "picard_trap_n1_r2": trap(1),
     "picard_trap_n2_r2": trap(2),
     "picard_trap_n3_r2": trap(3),
+    "picard_trap_n6_r2": trap(6),
     "picard_trap_n2_r0": trap(2, reach=0),
     "picard_trap_n2_r2_k0.5": trap(2, k=0.5),
 }
@@ -74,7 +75,8 @@ PLAN = [(["semi_k0.5", "picard_defect_th0.5_n2"], "100,1e4", "2,4,8"),
         (["picard_defect_th0.5_n2_r2"], "1e5,100", "8,16")]
 # the trapezoidal force (--plan trapezoidal)
 PLAN_TRAP = [(["picard_trap_n2_r2"], "100,1e4,1e5", "4,8"),
-             (["picard_trap_n1_r2", "picard_trap_n3_r2", "picard_trap_n2_r0", "picard_trap_n2_r2_k0.5"], "100,1e4", "4,8")]
+             (["picard_trap_n1_r2", "picard_trap_n3_r2", "picard_trap_n2_r0", "picard_trap_n2_r2_k0.5"], "100,1e4", "4,8"),
+             (["picard_trap_n6_r2"], "100", "4")]
 
 
 def run(binary, raw, tag, sets):
