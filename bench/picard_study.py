@@ -66,6 +66,8 @@ METHODS = {
     "picard_trap_n2_r2": trap(2),
     "picard_trap_n3_r2": trap(3),
     "picard_trap_n6_r2": trap(6),
+    # the force of xi^{n+1} with as many passes, for the damping against N
+    "picard_defect_th0.5_n6_r2": picard(6, 0.5) + ["time.solid_implicit_reach=2"],
     "picard_trap_n2_r0": trap(2, reach=0),
     "picard_trap_n2_r2_k0.5": trap(2, k=0.5),
 }
@@ -76,7 +78,7 @@ PLAN = [(["semi_k0.5", "picard_defect_th0.5_n2"], "100,1e4", "2,4,8"),
 # the trapezoidal force (--plan trapezoidal)
 PLAN_TRAP = [(["picard_trap_n2_r2"], "100,1e4,1e5", "4,8"),
              (["picard_trap_n1_r2", "picard_trap_n3_r2", "picard_trap_n2_r0", "picard_trap_n2_r2_k0.5"], "100,1e4", "4,8"),
-             (["picard_trap_n6_r2"], "100", "4")]
+             (["picard_trap_n6_r2", "picard_defect_th0.5_n6_r2"], "100", "4")]
 
 
 def run(binary, raw, tag, sets):
