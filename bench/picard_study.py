@@ -10,12 +10,15 @@ the explicit cell-stress run at P = 0.5 (solids.solid_cfl = 0.5) to the same T. 
 run to results/implicit_picard.csv: exit code, steps, the largest total energy (kinetic +
 elastic) over its start, its growth over the second half, the largest area drift, the
 failure (a fold or a blow-up: the health check's message), ke_dev_explicit (the largest
-|KE(t) - KE_ref(t)| over the run, in % of KE(0), KE_ref interpolated in t), the last
+|KE(t) - KE_ref(t)| over the run, in % of KE(0), KE_ref interpolated in t), ke_dev_verlet (the
+same against a second reference, the default explicit coupling, velocity Verlet, at the default
+P = 0.5: row explicit_verlet, whose ke_dev_explicit is the gap of the two references), the last
 iteration's relative velocity change (picard_change: median and largest over the steps),
 passes per step, multigrid cycles per step of all passes (pressure and velocity) and the
 same over the reference run's pressure cycles per step ("cost": pressure-solve units).
 
     python3 bench/picard_study.py            # the PLAN below (~15 min on a 2-core machine at load 10)
+    python3 bench/picard_study.py --plan trapezoidal   # PLAN_TRAP: time.solid_picard_force = "trapezoidal"
     python3 bench/picard_study.py [--bin build/refmap] [--grid 64] [--methods a,b --mus 100,1e4 --ps 2,4,8]
 """
 import argparse
@@ -30,10 +33,18 @@ import disc_study  # noqa: E402  (bench/disc_study.py)
 SEMI = ['time.viscous="implicit"', 'time.solid_stress="semi_implicit"']
 
 
-def picard(n, theta, defect=True, k=None):
+def picard(n, theta, defect=True, k=None, force="new"):
     s = SEMI + [f"time.solid_picard_iterations={n}", f"time.solid_picard_theta={theta}",
                 f"time.solid_picard_defect={'true' if defect else 'false'}"]
+    if force != "new":
+        s.append(f'time.solid_picard_force="{force}"')
     return s + [f"time.solid_implicit_k={k if k is not None else 0.5}"]
+
+
+def trap(n, k=0.25, reach=2):
+    """The trapezoidal force (mean of F(xi^n) and the pass's), theta = 1/2, defect form;
+    k = theta / 2 makes one pass exact in the 1-D model (solver/model/solid_picard.cpp)."""
+    return picard(n, 0.5, k=k, force="trapezoidal") + ([f"time.solid_implicit_reach={reach}"] if reach else [])
 
 
 METHODS = {
@@ -49,11 +60,25 @@ METHODS = {
     # the defect form with the preconditioner's eta reaching 2 cells further into the fluid
     # (time.solid_implicit_reach: in the defect form it changes the iteration, not its fixed point)
     "picard_defect_th0.5_n2_r2": picard(2, 0.5) + ["time.solid_implicit_reach=2"],
+    # time.solid_picard_force = "trapezoidal": the kick with (F^n + F^{n+1,(k)}) / 2, theta = 1/2,
+    # k = 1/4 (= theta / 2), reach 2 unless named otherwise
+    "picard_trap_n1_r2": trap(1),
+    "picard_trap_n2_r2": trap(2),
+    "picard_trap_n3_r2": trap(3),
+    "picard_trap_n6_r2": trap(6),
+    # the force of xi^{n+1} with as many passes, for the damping against N
+    "picard_defect_th0.5_n6_r2": picard(6, 0.5) + ["time.solid_implicit_reach=2"],
+    "picard_trap_n2_r0": trap(2, reach=0),
+    "picard_trap_n2_r2_k0.5": trap(2, k=0.5),
 }
 PLAN = [(["semi_k0.5", "picard_defect_th0.5_n2"], "100,1e4", "2,4,8"),
         (["picard_plain_th0.5_n2", "picard_defect_th1_n2"], "100,1e4", "8"),
         (["picard_defect_th0.5_n4", "picard_defect_th0.5_n2_r2"], "100,1e4", "4,8"),
         (["picard_defect_th0.5_n2_r2"], "1e5,100", "8,16")]
+# the trapezoidal force (--plan trapezoidal)
+PLAN_TRAP = [(["picard_trap_n2_r2"], "100,1e4,1e5", "4,8"),
+             (["picard_trap_n1_r2", "picard_trap_n3_r2", "picard_trap_n2_r0", "picard_trap_n2_r2_k0.5"], "100,1e4", "4,8"),
+             (["picard_trap_n6_r2", "picard_defect_th0.5_n6_r2"], "100", "4")]
 
 
 def run(binary, raw, tag, sets):
@@ -96,14 +121,16 @@ def main():
     ap.add_argument("--mus", default="100,1e4")
     ap.add_argument("--ps", default="2,4,8")
     ap.add_argument("--steps8", type=int, default=128, help="steps at P = 8 (sets the end time T)")
+    ap.add_argument("--plan", choices=["new", "trapezoidal"], default="new",
+                    help="without --methods: PLAN (the force of xi^{n+1}) or PLAN_TRAP (the trapezoidal force)")
     a = ap.parse_args()
     path = os.path.join(a.out, "implicit_picard.csv")
     cols = ["method", "grid", "mu_s_over_rho_s", "P", "rc", "steps", "t_end", "e_max", "late_growth", "e_end",
-            "area_drift", "ke_dev_explicit", "change_median", "change_max", "passes", "cycles_per_step",
+            "area_drift", "ke_dev_explicit", "ke_dev_verlet", "change_median", "change_max", "passes", "cycles_per_step",
             "cost_pressure_units", "wall_per_step", "failure"]
     old = disc_study.read_rows(path)  # rows of other (method, grid, mu, P) are kept
     n = a.grid
-    plan = [(a.methods.split(","), a.mus, a.ps)] if a.methods else PLAN
+    plan = [(a.methods.split(","), a.mus, a.ps)] if a.methods else (PLAN_TRAP if a.plan == "trapezoidal" else PLAN)
     refs = {}
     new = []
     for ms, mus, ps in plan:
@@ -118,6 +145,17 @@ def main():
                            cost_pressure_units=1.0, **r)
                 print(", ".join(f"{k}={row.get(k, '')}" for k in cols), flush=True)
                 new.append(row)
+                # the default explicit coupling (velocity Verlet) at the default P: the second
+                # reference (ke_dev_verlet); its row's ke_dev_explicit is the two references' gap
+                r, vseries = run(a.bin, a.raw, f"explicit_verlet_n{n}_mu{mu:g}_P0.5",
+                                 base + ["solids.solid_cfl=0.5", 'time.elastic_coupling="verlet"'])
+                refs[mu] += (vseries,)
+                row = dict(method="explicit_verlet", grid=n, mu_s_over_rho_s=f"{mu:g}", P="0.5", passes=1,
+                           cost_pressure_units=r.get("poisson_per_step", float("nan")) / refs[mu][1], **r)
+                if vseries and series:
+                    row["ke_dev_explicit"] = ke_dev(vseries, series)
+                print(", ".join(f"{k}={row.get(k, '')}" for k in cols), flush=True)
+                new.append(row)
             for m in ms:
                 for p in [float(x) for x in ps.split(",")]:
                     sets = METHODS[m] + base + [f"time.dt_max={p / n / c!r}"]
@@ -129,6 +167,8 @@ def main():
                     row = dict(method=m, grid=n, mu_s_over_rho_s=f"{mu:g}", P=f"{p:g}", passes=passes, **r)
                     if series and refs[mu][0]:
                         row["ke_dev_explicit"] = ke_dev(series, refs[mu][0])
+                    if series and refs[mu][2]:
+                        row["ke_dev_verlet"] = ke_dev(series, refs[mu][2])
                     if "cycles_per_step" in r:
                         row["cost_pressure_units"] = r["cycles_per_step"] / refs[mu][1]
                     print(", ".join(f"{k}={row.get(k, '')}" for k in cols), flush=True)

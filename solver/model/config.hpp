@@ -79,6 +79,12 @@ enum class SolidStressTime { Explicit, SemiImplicit, UpperConvected };
 /// stress applied as the mean of the old and new xi's forces (half kick, drift, half kick):
 /// second order, same stress evaluations per step (docs/method.md, "Time step").
 enum class ElasticCoupling { SymplecticEuler, Verlet };
+/// Config::solid_picard_force (time.solid_picard_force): the solid force of a pass of
+/// time.solid_picard_iterations. New: the force of the pass's xi^{n+1,(k)} applied whole (the
+/// fixed point damps like backward Euler). Trapezoidal: the mean of the step's starting force
+/// F(xi^n) and the pass's, (F^n + F^{n+1,(k)}) / 2 (with theta = 1/2 the fixed point is the
+/// trapezoidal rule: energy-neutral for the linear oscillator; solver/model/solid_picard.cpp).
+enum class PicardForce { New, Trapezoidal };
 /// Config::jump_flux: the momentum's face values where the density is not one value in a
 /// face's stencil (a density jump), with central advection: Superbee-limited (default) or
 /// the same central values as elsewhere (docs/density_ratio.md).
@@ -240,6 +246,7 @@ struct Config {
   /// time.solid_picard_defect: the iterations correct the last one's velocity change through
   /// the stabilising operator (its term vanishes at convergence) instead of repeating the step
   bool solid_picard_defect = true;
+  PicardForce solid_picard_force = PicardForce::New;  ///< time.solid_picard_force
   int solid_rate_sweeps = 1;  ///< time.solid_rate_sweeps: outer block Gauss-Seidel sweeps of the upper-convected step (1: cross terms lagged)
   /// time.implicit_tol: relative residual of the implicit velocity solve (the velocity
   /// change d over a step; solver/model/implicit_step.hpp); looser than the pressure's solver.tol

@@ -73,6 +73,10 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
     for (Field* f : {&ufp_, &wf_}) f->resize(nx + 1, ny, ng);
     for (Field* f : {&vfp_, &wv_}) f->resize(nx, ny + 1, ng);
   }
+  // time.solid_picard_force = "trapezoidal" (solver/model/solid_picard.cpp): the kick's fields
+  picard_trapezoid_ = elastic && cfg_.solid_picard > 0 && cfg_.solid_picard_force == PicardForce::Trapezoidal;
+  if (picard_trapezoid_)
+    for (Field* f : {&fpx_, &fpy_, &dfx_, &dfy_, &vpx_, &vpy_}) f->resize(nx, ny, ng);
   initialise();
   register_state();
   add_components();
@@ -99,6 +103,11 @@ void Simulation::register_state() {
       state_.add_field(std::string("sim.verlet.") + name, *f);
     state_.add_value("sim.verlet.dt_prev", dt_prev_);
     state_.add_count("sim.verlet.steps", verlet_steps_);
+  }
+  if (picard_trapezoid_) {  // the last step's solid force F^n (time.solid_picard_force)
+    state_.add_field("sim.picard.fpx", fpx_);
+    state_.add_field("sim.picard.fpy", fpy_);
+    state_.add_count("sim.picard.steps", verlet_steps_);
   }
 }
 
@@ -598,12 +607,13 @@ void Simulation::apply_viscous_and_solid_stress(double dt) {
   }
   if (elastic) {
     ScopedPhase ph(timers_, "solid stress");
-    if (verlet_) {
+    const bool mean_force = verlet_ || picard_trapezoid_;  // time.solid_picard_force = "trapezoidal" too
+    if (mean_force) {
       vpx_ = fx_;
       vpy_ = fy_;
     }
     solid_force();
-    if (verlet_) {  // fx_ = viscous + (F^n + F^{n+1}) / 2 (kernels/verlet.hpp)
+    if (mean_force) {  // fx_ = viscous + (F^n + F^{n+1}) / 2 (kernels/verlet.hpp)
       verlet_kick(fx_.view(), fy_.view(), vpx_.cview(), vpy_.cview(), fpx_.view(), fpy_.view(), dfx_.view(),
                   dfy_.view(), nx, ny);
       ++verlet_steps_;

@@ -180,6 +180,8 @@ class Simulation {
   double step_picard(double dt);
   /// fx_, fy_ -= A(eta) of the last pass's velocity change (time.solid_picard_defect).
   void picard_defect_force(double dt);
+  /// time.solid_picard_force = "trapezoidal", first step: F(xi^n) of the state into fpx_, fpy_.
+  void picard_start_force();
   void build_poisson_coefficients();
   /// The pressure solver's operator of the current beta (open sides as walls, the outflow
   /// sides' Dirichlet condition as the cell sink sink_).
@@ -282,8 +284,12 @@ class Simulation {
   Field uk_, vk_, ufk_, vfk_;            ///< the last pass's end-of-step velocities
   double picard_change_ = 0.0;
   long picard_cycles_ = 0;
+  /// time.solid_picard_force = "trapezoidal": the passes kick with (F^n + F^{n+1,(k)}) / 2
+  /// through verlet_kick and the fields below (fpx_, fpy_, verlet_steps_ are then state)
+  bool picard_trapezoid_ = false;
   mutable FlowLimit flow_limit_;  ///< of the last stable_dt()
-  // time.elastic_coupling = "verlet" (kernels/verlet.hpp); empty otherwise
+  // time.elastic_coupling = "verlet" (kernels/verlet.hpp); empty otherwise (fpx_, fpy_,
+  // dfx_, dfy_, vpx_, vpy_ and verlet_steps_ also with picard_trapezoid_)
   bool verlet_ = false;
   Field fpx_, fpy_;        ///< the stress force F^n of the last step's xi (state)
   Field dfx_, dfy_;        ///< F^n - F^{n-1} (state)

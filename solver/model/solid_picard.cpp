@@ -16,16 +16,39 @@
 // projection) is recomputed from the new xi, so at convergence the stress of the new step,
 // its blend and its band all belong to xi^{n+1}(u^{n+1}).
 //
-// The fixed point alone converges only below the explicit limit (1-D model: the
-// iteration's factor is theta w for w = (c dt kappa)^2). With time.solid_picard_defect each
-// repeated pass is a defect correction through the semi-implicit operator instead:
+// The solid force of a pass (time.solid_picard_force), with F^(k) = F(xi^{n+1,(k)}):
+//  * "new": F^(k) whole. For the 1-D oscillator (x' = v, v' = -omega^2 x, h = dt,
+//    w = (omega h)^2) the fixed point x1 = x0 + h ((1 - theta) v0 + theta v1),
+//    v1 = v0 - h omega^2 x1 has det = 1 / (1 + theta w): the energy falls by that factor per
+//    step, a damping like backward Euler's on the resolved modes (measured in
+//    results/implicit_picard.csv).
+//  * "trapezoidal": (F^n + F^(k)) / 2, F^n = F(xi^n) the last step's final force (the fields
+//    and kick of velocity Verlet, kernels/verlet.hpp; a first step computes it,
+//    picard_start_force). The fixed point x1 = x0 + h ((1 - theta) v0 + theta v1),
+//    v1 = v0 - h omega^2 (x0 + x1) / 2 has det = (1 + (1 - theta) w / 2) / (1 + theta w / 2):
+//    with theta = 1/2 it is the trapezoidal rule (the Cayley transform of the oscillator:
+//    |lambda| = 1 and v^2 + omega^2 x^2 kept exactly at every dt, the phase per step
+//    2 atan(sqrt(w) / 2) instead of sqrt(w)).
+//
+// The iteration. Plain repetition of the step (time.solid_picard_defect = false): x^(k)
+// depends on v^(k) through h theta, so the factor of the map v^(k) -> v^(k+1) is theta w
+// ("new") or theta w / 2 ("trapezoidal"): it converges only below the explicit limit. With
+// time.solid_picard_defect each repeated pass is a defect correction through the
+// semi-implicit operator instead:
 //     (rho/dt - A(m)) d^(k+1) = f(xi^(k)) - A(eta) d^(k),     m = mu_impl + eta,
 // eta = k G dt (1 - H): at convergence the eta terms cancel and (rho/dt) d = f, the step
-// above with no stabilising term left; the eta multigrid is the preconditioner. For the
-// 1-D oscillator the iteration factor is w (k - theta) / (1 + k w): with k = theta the
-// linearised elastic Jacobian dt theta G lap is exactly the stabilising operator k G dt lap
-// in the solid's interior (one pass converges), and it contracts for every w when
-// k >= theta / 2. What the band and the blend do to it is what the iteration measures.
+// above with no stabilising term left; the eta multigrid is the preconditioner. For the 1-D
+// oscillator, (1 + k w) d^(k+1) = h f^(k) / rho + k w d^(k) with h f^(k) / rho = const - s w d^(k),
+// s = theta ("new") or theta / 2 ("trapezoidal", half the force moves with xi^(k)): the
+// iteration factor is
+//     w (k - s) / (1 + k w),
+// zero for k = s (the linearised elastic Jacobian dt s G lap is exactly the stabilising
+// operator k G dt lap in the solid's interior: one pass converges), below 1 for every w when
+// k >= s / 2, and tending to 1 - s / k as w -> infinity. So the trapezoidal force wants
+// k = theta / 2 (1/4 at theta = 1/2; k >= 1/4 is also the stability bound of the first,
+// semi-implicit pass, implicit_step.hpp); at k = theta = 1/2, right for "new", its factor tends
+// to 1/2 and two passes leave a quarter of the first pass's error. What the band and the
+// blend do to it is what the iteration measures (results/implicit_picard.csv).
 //
 // Each pass costs a whole step (xi advection and extrapolation, a velocity and a pressure
 // solve): picard_cycles() counts the multigrid cycles of all of them.
@@ -65,6 +88,7 @@ double Simulation::step_picard(double dt) {
   }
   // the state at t^n: every record a step reads (the checkpoint's, so a pass from it is the
   // step from t^n bit for bit; tests/test_solid_picard.cpp checks that)
+  if (picard_trapezoid_ && verlet_steps_ == 0) picard_start_force();  // F^n of the first step
   CheckpointWriter snap;
   state_.save(snap);
   step_once(dt);
@@ -104,6 +128,19 @@ double Simulation::step_picard(double dt) {
   }
   picard_cycles_ = cycles;
   return dt;
+}
+
+void Simulation::picard_start_force() {
+  // F(xi^n) of the state as a step's stress computes it (xi, its band and phi are those the
+  // last move_solids or the construction left); the step recomputes the stress tensor and the
+  // elastic energy of its own xi, the energy is kept for the diagnostics of t^n
+  const double e = elastic_energy_;
+  fx_.fill(0.0);
+  fy_.fill(0.0);
+  solid_force();
+  fpx_ = fx_;
+  fpy_ = fy_;
+  elastic_energy_ = e;
 }
 
 void Simulation::picard_defect_force(double dt) {

@@ -116,6 +116,11 @@ std::span<const OptionName<ElasticCoupling>> option_names(ElasticCoupling) {
   return span_of(n);
 }
 
+std::span<const OptionName<PicardForce>> option_names(PicardForce) {
+  static const OptionName<PicardForce> n[] = {{PicardForce::New, "new"}, {PicardForce::Trapezoidal, "trapezoidal"}};
+  return span_of(n);
+}
+
 std::span<const OptionName<XiFlux>> option_names(XiFlux) {
   static const OptionName<XiFlux> n[] = {
       {XiFlux::Central, "central"}, {XiFlux::Superbee, "superbee"}, {XiFlux::VanLeer, "vanleer"}};

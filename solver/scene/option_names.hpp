@@ -29,6 +29,7 @@ std::span<const OptionName<StressBlend>> option_names(StressBlend);
 std::span<const OptionName<ViscousTime>> option_names(ViscousTime);
 std::span<const OptionName<SolidStressTime>> option_names(SolidStressTime);
 std::span<const OptionName<ElasticCoupling>> option_names(ElasticCoupling);
+std::span<const OptionName<PicardForce>> option_names(PicardForce);
 std::span<const OptionName<JumpFlux>> option_names(JumpFlux);
 std::span<const OptionName<XiFlux>> option_names(XiFlux);
 std::span<const OptionName<XiVelocity>> option_names(XiVelocity);

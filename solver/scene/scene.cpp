@@ -264,6 +264,11 @@ void parse_time(const Ctx& ctx, const Table& top, Config& cfg) {
   t.require(cfg.solid_picard == 0 || !cfg.solid_picard_defect || cfg.solid_time == SolidStressTime::SemiImplicit,
             "solid_picard_defect", "needs solid_stress = \"semi_implicit\" (it corrects through its operator); "
             "set it false for plain repetitions of the step");
+  cfg.solid_picard_force = t.option<PicardForce>("solid_picard_force");
+  t.require(cfg.solid_picard_force == PicardForce::New ||
+                (cfg.solid_picard > 0 && cfg.solid_time == SolidStressTime::SemiImplicit),
+            "solid_picard_force", "\"trapezoidal\" needs solid_picard_iterations > 0 and solid_stress = "
+            "\"semi_implicit\" (with the explicit stress the default Verlet coupling already applies the mean force)");
   cfg.solid_rate_sweeps = t.integer("solid_rate_sweeps");
   cfg.implicit_tol = t.number("implicit_tol");
 }

@@ -171,6 +171,13 @@ std::vector<KeyDef> build_keys() {
               "the iterations of solid_picard_iterations correct the last velocity change through the "
               "semi-implicit operator, (rho/dt - A(eta)) (d - d_last) = f - rho d_last / dt, so that its term vanishes "
               "at convergence; false: each iteration repeats the semi-implicit step with the new xi"),
+      choice<PicardForce>("time", "solid_picard_force", d.solid_picard_force,
+                          "solid force of each pass of solid_picard_iterations: `\"new\"`, the force of the pass's "
+                          "xi^{n+1} applied whole (its fixed point damps like backward Euler); `\"trapezoidal\"`, the "
+                          "mean of the step's starting force F(xi^n) and the pass's (with solid_picard_theta = 1/2 the "
+                          "trapezoidal rule; the defect iteration converges in one pass in the solid's interior at "
+                          "solid_implicit_k = solid_picard_theta / 2); `\"trapezoidal\"` needs solid_stress = "
+                          "\"semi_implicit\" and solid_picard_iterations > 0 (docs/implicit.md)"),
       integer("time", "solid_rate_sweeps", d.solid_rate_sweeps, in(1, false, 100, false),
               "outer block Gauss-Seidel sweeps (u, then v) of solid_stress = \"upper_convected\": the first "
               "without its cross terms (b_xy and the other component's derivatives: lagged), each further "
