@@ -14,8 +14,8 @@
 # CAS (capillary numbers; the first is the "stiff" one, "0.01 0.05 0.2"), SEED (1), JOBS
 # (runs at once, 1 thread each; 1), RUNS (the run directories, kept; default a temporary
 # directory), OUT (results/suspension), SNAP_PHI (0.3: the fraction whose runs keep VTK frames
-# for the snapshot). The stiff phi = 0.4 point is run apart:
-#   PHIS=0.4 CAS=0.01 SNAP_PHI=0.4 OUT=results/suspension/dense bash bench/run_suspension.sh
+# for the snapshot). The phi = 0.4 points (stiff and soft) are run apart:
+#   PHIS=0.4 CAS="0.01 0.05 0.2" SNAP_PHI=0.4 OUT=results/suspension/dense bash bench/run_suspension.sh
 # and the default run's chart adds results/suspension/dense/suspension.csv when it exists.
 set -euo pipefail
 cd "$(dirname "$0")/.."
