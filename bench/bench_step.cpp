@@ -197,7 +197,7 @@ void BM_IncrmtCircles42(benchmark::State& state) {
   state.counters["solids"] = 42;
 }
 
-// 1000 soft discs of 10 cells' radius on 1024^2, contact on (issue 27, item 4; the scene
+// 1000 soft discs of 10 cells' radius on 1024^2, contact on (results/performance.md, "Many solids"; the scene
 // of bench/run_scaling.sh): against WholeSolidStep/1024 (one disc), the cost of many solids
 void BM_Discs1000Step(benchmark::State& state) {
   const int n = int(state.range(0));

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Energy budget of the split stress step at a disc's surface (issue 26 item 1).
+"""Energy budget of the split stress step at a disc's surface (docs/implicit.md).
 
 Runs build/bench/refmap_energy_budget (bench/energy_budget/energy_budget.cpp: the terms and
 their definitions) on scenes/disc_tgv.toml at 32^2, 400 steps, with the time step imposed

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Both body-force estimators on Turek & Hron FSI2 (issue 25 item 2; results/README.md, "Body
+# Both body-force estimators on Turek & Hron FSI2 (results/README.md, "Body
 # forces: control volume against forcing"): one run of scenes/turek_hron_fsi2.toml to t = 10.5
 # with build/bench/refmap_body_forces (the direct forcing's force, the clamped flag's momentum
 # and the control-volume force of the cylinder + flag every step), summarised by

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The grid-scale wave along the Turek & Hron flag (issue 25 item 4; results/fsi.md, "The
+# The grid-scale wave along the Turek & Hron flag (results/fsi.md, "The
 # grid-scale wave along the flag"): short runs of scenes/turek_hron_fsi2.toml (and fsi3) with
 # the flag's Kelvin-Voigt viscosity switched off or set, xi carried by the face or the cell
 # velocities (solids.xi_velocity) or a grid-scale viscosity (solid grid_viscosity), on the

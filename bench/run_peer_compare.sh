@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Side by side with the peer code IncRMT (Rycroft et al. 2020; github chr1shr/incrmt, which
 # needs github chr1shr/tgmg beside it): the same circles in both codes, whole steps timed,
-# peak memory, at growing numbers of solids (issue 27, item 6; results/performance.md,
+# peak memory, at growing numbers of solids (results/performance.md,
 # "Side by side with IncRMT").
 #
 #   PEER_DIR=/path/with/incrmt+tgmg bash bench/run_peer_compare.sh [REFMAP_BINARY]

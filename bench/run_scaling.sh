@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The scaling measurement of issue 27 (item 4): 1000 soft discs on 1024^2 against one disc on
+# The scaling measurement (results/performance.md, "Many solids"): 1000 soft discs on 1024^2 against one disc on
 # the same grid (bench/scenes/many_discs_1000.toml, many_discs_1_1024.toml, written by
 # bench/scenes/make_many_discs.py): peak resident memory (GNU time's maximum RSS), the run's
 # own memory estimate, microseconds per cell and step over STEPS timed steps after WARM

@@ -9,7 +9,7 @@
 #  2. many small solids vs one large one: 512^2 box, 1 disc of radius 0.2 vs 16 and 64 discs
 #     of radius 0.2/sqrt(N) (bench/scenes/many_discs_<N>.toml), and on 1024^2 one disc of
 #     radius 0.2 vs 1000 of radius 0.01 (many_discs_1_1024, many_discs_1000: the scaling scene
-#     of issue 27): solid-phase time per step and the solids' storage; 64 discs and the 1024^2
+#     of results/performance.md, "Many solids"): solid-phase time per step and the solids' storage; 64 discs and the 1024^2
 #     pair also on 2 threads;
 #  3. accuracy against cost: error vs wall time over grids, central and Superbee fluxes, for
 #     the Taylor-Green vortex, the lid-driven cavity at Re 100 and the elastic-layer Couette
@@ -117,7 +117,7 @@ if [[ " $STUDIES " == *" many "* ]]; then
   echo "== many small solids vs one: 512^2, N = 1, 16, 64 discs; 1024^2, 1 and 1000 discs; $WARM + $STEPS steps"
   part_begin many
   rm -rf "$RAW/many"
-  # scene:threads (the scaling goals of issue 27 quote 2-thread speed-ups for 64 and 1000 discs)
+  # scene:threads (the scaling goals quote 2-thread speed-ups for 64 and 1000 discs)
   for spec in "1:1" "16:1" "64:1 2" "1_1024:1 2" "1000:1 2"; do
     n=${spec%%:*}
     for t in ${spec#*:}; do

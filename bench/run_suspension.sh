@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Relative viscosity of a sheared suspension of soft discs against the area fraction, for
-# stiff and for soft particles (issue 27, item 3; results/suspension.md). Every run is
+# stiff and for soft particles (results/suspension.md). Every run is
 # bench/scenes/shear_suspension.toml (2 x 1 shear cell, walls at -U/2 and +U/2, gamma = 1,
 # mu_f = rho = 1, discs of radius a = 0.1 = H / 10 placed at random by [suspension]) with
 # the area fraction, the capillary number Ca = mu_f gamma / G (G = 2 mu_s) and the grid set

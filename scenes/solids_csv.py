@@ -4,7 +4,7 @@ solids.csv is in long format: one row per solid and output step (columns step, t
 solid, area, cx, ...), so its width does not grow with the number of solids. Scripts that
 want one time series per solid and quantity aligned with the rows of diagnostics.csv use
 wide_columns(), which pivots it back to columns named solid<k>_<quantity> (the names
-diagnostics.csv itself carried before issue 27).
+diagnostics.csv itself carried before the long format).
 
     import solids_csv                      # scenes/ on sys.path
     cols = solids_csv.wide_columns(run_dir, steps)   # steps: diagnostics.csv's step column

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks that solids.csv (long format, issue 27) carries exactly the per-solid numbers that
+"""Checks that solids.csv (long format) carries exactly the per-solid numbers that
 diagnostics.csv carried as solid<k>_<quantity> columns before it.
 
     python3 scripts/check_solids_pivot.py OLD NEW

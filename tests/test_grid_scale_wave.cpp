@@ -72,7 +72,7 @@ TEST(GridScaleWave, CellVelocityRestoresTheOddEvenModeFaceVelocityDoesNot) {
 }
 
 // [[solid]] grid_viscosity = c adds c dx rho_s c_s, c_s = sqrt(2 mu_s / rho_s), to the solid's
-// Kelvin-Voigt viscosity (solver/scene/scene.cpp): FSI2's flag at the bound c = 0.4 gets
+// Kelvin-Voigt viscosity (solver/scene/scene.cpp): FSI2's flag at the bound c = 0.4 (the peer code's level) gets
 // 0.4 * 0.005 * 1e4 * sqrt(5e5 / 1e4) = 141.42 Pa s on top of the 300 of the scene, half that
 // grid part at dx = 0.0025; a rigid body refuses the key.
 TEST(GridScaleWave, GridViscosityIsCDxRhoCs) {

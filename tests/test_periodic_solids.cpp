@@ -1,9 +1,9 @@
-// Solids across periodic sides (issue 27; solver/model/periodic_window.hpp, docs/reference_map.md
+// Solids across periodic sides (solver/model/periodic_window.hpp, docs/reference_map.md
 // "Periodic sides"):
 //  - a soft disc carried once around a fully periodic box by a uniform flow (diagonally, so
 //    it crosses both seams and the corner, where its window is in four pieces) comes back
 //    to its start, one period further on in the unwrapped centroid, with its area within
-//    0.5 % and its centroid within 0.1 dx (the issue's goal);
+//    0.5 % and its centroid within 0.1 dx (the goal, docs/reference_map.md);
 //  - the same problem placed on the seam and in the middle of the box: a soft disc in a
 //    Taylor-Green flow, a rigid disc moved through one on a prescribed path (both forcings)
 //    and two discs colliding across the seam. The seam case is the middle case shifted by
@@ -165,7 +165,7 @@ TEST(PeriodicSolids, DiscCarriedOnceAroundComesBack) {
   // a uniform flow (1, 1) carries a soft disc (rho_s = rho_f) once around the box in t = 1:
   // the flow and the rigid translation are an exact solution, so what is measured is the
   // reference map's transport, the level set and the stress across the seams. Goals from
-  // the issue: area within 0.5 %, centroid within 0.1 dx of its start (plus one period).
+  // the goal: area within 0.5 %, centroid within 0.1 dx of its start (plus one period).
   // dt = 1/250 moves the disc 0.192 cells a step (not a fraction that repeats the cell
   // offsets every few steps, as the CFL step dx/4 would).
   const int n = 48;
@@ -196,8 +196,8 @@ TEST(PeriodicSolids, DiscCarriedOnceAroundComesBack) {
               d1.cy, ex, ey);
   EXPECT_TRUE(crossed_corner);
   EXPECT_NEAR(sim.time(), 1.0, 1e-12);
-  EXPECT_LT(worst_area, 5e-3);  // the issue's 0.5 %
-  EXPECT_LT(std::hypot(ex, ey), 0.1);  // the issue's 0.1 dx
+  EXPECT_LT(worst_area, 5e-3);  // the goal's 0.5 %
+  EXPECT_LT(std::hypot(ex, ey), 0.1);  // the goal's 0.1 dx
 }
 
 TEST(PeriodicSolids, SoftDiscOnTheCornerMatchesTheMiddleInTaylorGreen) {

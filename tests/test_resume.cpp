@@ -1,7 +1,7 @@
 // Checkpoints are built from the state registry (solver/io/state_registry.hpp): a run stopped
 // after N steps, written to a checkpoint and continued by a new Simulation must give the
 // same bits as the run that never stopped - for every shipped scene and for the implicit
-// variants whose warm-start state was once left out (issue: a resumed turek_hron_fsi2
+// variants whose warm-start state was once left out (found when a resumed turek_hron_fsi2
 // differed from the first step after the resume). And a component that only a test knows
 // about has its state checkpointed without any change to the checkpoint code.
 #include <gtest/gtest.h>

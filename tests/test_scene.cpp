@@ -784,7 +784,7 @@ TEST_F(SceneFiles, SceneReadmeSolidsExampleLoads) {
 }
 
 // ---------------------------------------------------------------------------------------
-// A fixed time.dt above an explicit limit of its scene is refused at load (issue 26 item 4;
+// A fixed time.dt above an explicit limit of its scene is refused at load (docs/stability.md;
 // solver/scene/scene.cpp, check_fixed_step; the limits' formulas: solver/model/time_step_limits.hpp).
 // Each limit on both sides: 0.1 % below it loads, 0.1 % above it is refused naming the
 // limit and the key that lifts it.
@@ -843,7 +843,7 @@ TEST_F(SceneFiles, FixedStepAboveTheExplicitSolidLimitIsRefused) {
 }
 
 TEST_F(SceneFiles, RefinedCylinderWithItsStepScaledByDxIsRefused) {
-  // the issue's case: scenes/cylinder_re20.toml at 20 cells per diameter (dx = 0.005) with
+  // a new user's case: scenes/cylinder_re20.toml at 20 cells per diameter (dx = 0.005) with
   // its fixed step scaled with dx, 0.9278 dx = 0.004639, blew up at t = 0.46 (face
   // divergence, exit 3); the explicit viscous limit there is 0.9 dx^2 / (6 nu) = 0.00375
   const std::string cyl = std::string(REFMAP_SOURCE_DIR) + "/scenes/cylinder_re20.toml";

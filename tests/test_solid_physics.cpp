@@ -12,7 +12,7 @@
 //  - the finite-amplitude shear wave (scenes/shear_wave.toml, an exact solution of constant
 //    energy): the explicit stress's energy error over four periods is first order in the
 //    solid step; within 1 % at solid_cfl = 0.075 with either stress form, 5 % at the
-//    default 0.5 (issue 26 item 4).
+//    default 0.5 (docs/stability.md).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -172,7 +172,7 @@ TEST(ShearWaveEnergy, SymplecticEulerWithinOnePercentOnlyWellBelowTheDefaultStep
   // 64^2, max |E / E0 - 1| over t in [0, 4] measured (face / cell): solid_cfl 0.5 (the
   // default) 4.97 / 4.85 %; 0.35, 3.55 / 3.43 %; 0.25, 2.59 / 2.47 %; 0.15, 1.62 / 1.49 %;
   // 0.1, 1.13 / 1.00 %; 0.09, 1.03 / 0.90 %; 0.08, 0.94 / 0.80 %; 0.075, 0.89 / 0.75 %;
-  // 0.0625, 0.77 / 0.62 %. The issue's bound, 1 % with either form, needs solid_cfl <= 0.085;
+  // 0.0625, 0.77 / 0.62 %. The bound asked for, 1 % with either form, needs solid_cfl <= 0.085;
   // the default stays 0.5 because 0.075 fails two validation tests (ContactWall.
   // BounceUnderGravity: the stiff disc's rebound no longer leaves the contact range;
   // StabilityLimits.SpecificStressBlend...: more energy gain; docs/method.md, "Time step").
@@ -187,7 +187,7 @@ TEST(ShearWaveEnergy, VerletCouplingWithinOnePercentAtTheDefaultStep) {
   // time.elastic_coupling = "verlet" (kernels/verlet.hpp): the same stress evaluations per
   // step, second order in the energy. At the default solid_cfl 0.5, 64^2, t in [0, 4]:
   // max |E / E0 - 1| measured (face / cell) 0.19 / 0.054 % in the same 555 steps as Algorithm 1's
-  // 4.97 / 4.85 % (results/shear_wave_energy.csv). The bounds keep the issue's 1 % with a
+  // 4.97 / 4.85 % (results/shear_wave_energy.csv). The bounds keep the 1 % asked for with a
   // margin and still fail if the coupling fell back to first order (2 % at P = 0.2).
   // Verlet is the default coupling: the scene as shipped, no override
   EXPECT_LT(shear_wave_energy_deviation("face"), 0.0025);

@@ -267,7 +267,7 @@ TEST(StabilityLimits, SemiImplicitReachConvergesToExplicit) {
 // semi-implicit splitting it keeps the stiff disc (mu_s / rho_s = 1e5, 64^2, 400 steps) bounded
 // at P = 8, where the same splitting on the paper's cell stress blows up (exit 3 after 350
 // steps, energy x 5e6). Measured with k = 0.25: largest total energy 1.16 E0 (a start-up rise,
-// then it only falls: e_end 0.59 E0), area drift 0.056 %. The 1 % energy bound is NOT
+// then it only falls: e_end 0.59 E0), area drift 0.056 %. The 1 % energy bound asked for is NOT
 // met (the start-up rise); the bounds below sit between the measured values and a failure.
 namespace {
 std::vector<std::string> variational_case(double mu, double p, double k, bool variational) {

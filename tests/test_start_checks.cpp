@@ -81,7 +81,7 @@ TEST(StartChecks, SolidOutsideTheWalls) {
 }
 
 TEST(StartChecks, SolidAcrossAPeriodicSide) {
-  // a disc across a periodic side loads (issue 27: its window wraps, solver/model/periodic_window.hpp)
+  // a disc across a periodic side loads (its window wraps, solver/model/periodic_window.hpp)
   EXPECT_EQ(error_of(scene(kPeriodic, disc("edge", 0.05, 0.5, 0.1))), "");
   EXPECT_EQ(error_of(scene(kPeriodic, disc("corner", 0.0, 1.0, 0.1))), "");
   // with walls on the other sides: across the periodic side yes, across a wall no

@@ -332,7 +332,7 @@ TEST_F(Survival, HealthStopWritesTheFailingStateOutsideTheSeries) {
 }
 
 TEST_F(Survival, SolidTooWideForAPeriodicDirectionIsExit3) {
-  // solids may cross periodic sides (issue 27), but a window never gets wider than the
+  // solids may cross periodic sides (docs/reference_map.md), but a window never gets wider than the
   // period: a long ellipse turned by a prescribed rotation from across the periodic
   // direction x to along it needs 44 + 2 x 3 of the 48 cells (band 6 cells either side)
   const std::string scene = box_scene(48,

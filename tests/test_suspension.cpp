@@ -1,4 +1,4 @@
-// Suspensions of soft particles in a shear cell (issue 27, items 2 and 3):
+// Suspensions of soft particles in a shear cell (results/suspension.md):
 //  - Placement.*: the random placement of [suspension] (solver/scene/suspension.hpp), expanded at
 //    load into [[solid]] tables: the same seed gives the same particles bit for bit (and the
 //    engine is the standard's), different seeds differ, the area fraction is the request's
@@ -224,7 +224,7 @@ double eta_of_one_disc(double mu_s, int nx, double t_end, double transition = 3.
 // to dx = 0 at first order (Richardson: 2 c(12.8) - c(6.4)), then subtracts the walls' 0.205:
 // measured 2.05. The excess is not yet in its asymptotic range (the same extrapolation from
 // 12.8 and 25.6 gives 1.92), so this 0.13 spread, and the walls' correction's own change with
-// the grid (0.035 from 6.4 to 12.8), sit inside the issue's 10 % tolerance asserted here.
+// the grid (0.035 from 6.4 to 12.8), sit inside the 10 % tolerance asserted here.
 // The runs stop at t = 0.5: c is steady to 1e-3 from t = 0.3 (the disturbance's diffusion
 // across the gap, H^2 / (pi^2 nu) = 0.1, three times over).
 TEST(ShearSuspension, StiffFreeDiscExtrapolatedCoefficientWithinTenPercentOfEinstein) {

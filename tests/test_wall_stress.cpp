@@ -10,7 +10,7 @@
 //    and 12.8 cells per radius: about +0.18 here, so about 1.89 unconfined:
 //    results/shear_cell.csv, bench/run_shear_cell.sh; a free disc with H varied at a fixed
 //    grid gives +0.24 at 6.4 cells per radius, results/suspension.md). The test asks the
-//    coefficient within 10 % of 2, as issue 27 does of the dilute limit.
+//    coefficient within 10 % of 2, as results/suspension.md asks of the dilute limit.
 #include <gtest/gtest.h>
 
 #include <cmath>

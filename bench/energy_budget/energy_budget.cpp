@@ -1,4 +1,4 @@
-// Energy budget of the split stress step around a solid's surface (issue 26 item 1,
+// Energy budget of the split stress step around a solid's surface (docs/implicit.md,
 // docs/implicit.md "Why the splitting fails at the interface").
 //
 //   refmap_energy_budget <scene.toml> [--set key=value ...] [--steps N] [--out budget.csv]

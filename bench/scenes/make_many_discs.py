@@ -6,7 +6,7 @@ on a sqrt(N) x sqrt(N) lattice (same total solid area; the gaps between the disc
 least 0.075 = 38 cells, far more than two extrapolation bands, so no contact is needed).
 The generated .toml files are committed; rerun this only to change the study.
 
-Also the scaling scenes of issue 27 (item 4), on 1024^2: many_discs_1000.toml, 1000 soft
+Also the scaling scenes, on 1024^2: many_discs_1000.toml, 1000 soft
 discs of radius 0.01 (10 cells) at random places (seeded) with gaps of at least 3 cells
 between them and 0.02 from the walls, contact on; and many_discs_1_1024.toml, the one disc of
 R = 0.2 on the same grid, the reference for the cost per cell and step.
@@ -99,7 +99,7 @@ def random_discs(n, r, gap, wall, seed):
 
 
 STUDY = "Used by bench/run_studies.sh (work and memory of many small solids vs one large one)."
-SCALING = "The scaling scenes of issue 27: memory and cost per cell and step (results/README.md)."
+SCALING = "The scaling scenes: memory and cost per cell and step (results/README.md)."
 
 
 def write(out, tag, nx, discs, r, area, extra="", used=STUDY):
@@ -120,7 +120,7 @@ def main():
         r = R / m
         write(out, str(n), 512, [((i + 0.5) / m, (j + 0.5) / m) for j in range(m) for i in range(m)], r,
               f"pi {R}^2 = {math.pi * R * R:.6f}")
-    # issue 27: 1000 discs on 1024^2 (contact on: some will meet) and one disc on the same grid
+    # the scaling scenes: 1000 discs on 1024^2 (contact on: some will meet) and one disc on the same grid
     write(out, "1000", 1024, random_discs(1000, 0.01, 3.0 / 1024, 0.02, 27), 0.01,
           f"1000 pi 0.01^2 = {1000 * math.pi * 1e-4:.6f}", "\n[contact]\nenabled = true\n", SCALING)
     write(out, "1_1024", 1024, [(0.5, 0.5)], R, f"pi {R}^2 = {math.pi * R * R:.6f}", used=SCALING)

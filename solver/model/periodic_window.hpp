@@ -1,5 +1,5 @@
 #pragma once
-// Solid windows across periodic sides (issue 27; docs/reference_map.md, "Periodic sides").
+// Solid windows across periodic sides (docs/reference_map.md, "Periodic sides").
 //
 // A solid's window (solver/model/solid.hpp) lives in UNWRAPPED index space: window cell (i, j) is
 // cell (i0 + i, j0 + j) of the periodic continuation of the grid, centred at

@@ -1,4 +1,4 @@
-// time.solid_picard_iterations (issue 26; docs/implicit.md, "The implicit step in xi"): a
+// time.solid_picard_iterations (docs/implicit.md, "The implicit step in xi"): a
 // fixed-point iteration of the whole step in which the elastic response of the new step is
 // implicit where the stress is.
 //

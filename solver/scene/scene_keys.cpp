@@ -163,7 +163,7 @@ std::vector<KeyDef> build_keys() {
       integer("time", "solid_picard_iterations", d.solid_picard, in(0, false, 50, false),
               "fixed-point iterations of the whole step in which xi is advanced with (1 - solid_picard_theta) u^n + "
               "solid_picard_theta u^{n+1} of the last iterate and the step re-solved (0: xi moved by u^n, Algorithm 1); "
-              "each costs a whole step (experimental, issue 26; docs/implicit.md)"),
+              "each costs a whole step (experimental; docs/implicit.md)"),
       num("time", "solid_picard_theta", d.solid_picard_theta, in(0, false, 1, false),
           "weight of the new velocity in the transport of xi of solid_picard_iterations (1/2: midpoint, 1: backward "
           "Euler)"),
