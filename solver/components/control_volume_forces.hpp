@@ -68,6 +68,11 @@ class ControlVolumeForces : public Component {
     if (p == StepPoint::Begin) begin_step(sim);
     if (p == StepPoint::End) end_step(sim, dt);
   }
+  /// Every body's balance (a clamped solid's force is its body's).
+  bool solid_load(int k, const BodyLoad*& load) const override {
+    load = has_load(k) ? &load_[std::size_t(k)] : nullptr;
+    return true;
+  }
 
  private:
   /// the fluid fraction w = 1 - sum_k (1 - H_k) into frac_

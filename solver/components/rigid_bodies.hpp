@@ -49,6 +49,11 @@ class RigidBodiesComponent : public Component {
   /// After the loads (fx, fy, torque); without them (no solid has a load) at the end, which
   /// is the same place: after sigma_max and the contact's gaps
   const char* solid_columns_after() const override { return "torque"; }
+  /// The forcing's load on every rigid body (the momentum it removes, solver/model/rigid_body.hpp).
+  bool solid_load(int k, const BodyLoad*& load) const override {
+    load = bodies_.rigid(k) ? &bodies_.load(k) : nullptr;
+    return true;
+  }
 
  private:
   RigidBodies bodies_;

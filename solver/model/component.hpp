@@ -28,6 +28,7 @@
 
 namespace refmap {
 
+struct BodyLoad;
 class Simulation;
 class Solid;
 class StateRegistry;
@@ -120,6 +121,11 @@ class Component {
   virtual std::vector<std::string> solid_columns() const { return {}; }
   virtual void solid_values(const Simulation&, int /*k*/, std::vector<double>& /*out*/) const {}
   virtual const char* solid_columns_after() const { return nullptr; }
+  /// Whether it measures the fluid's force and torque on the solids (solids.csv `fx`, `fy`,
+  /// `torque`): if so, `load` is set to solid k's (null: k has none, e.g. a solid clamped to
+  /// a body). The last component added that measures loads answers for every solid
+  /// (Simulation::solid_load): the control-volume balance, when on, replaces the forcing's.
+  virtual bool solid_load(int /*k*/, const BodyLoad*& /*load*/) const { return false; }
   /// Its cell fields (name, nx x ny field) written into every VTK frame after the built-in
   /// ones (solver/app/run.cpp).
   virtual std::vector<std::pair<std::string, const Field*>> frame_fields() const { return {}; }

@@ -4,7 +4,7 @@
 #include <cstring>
 #include <limits>
 
-#include "solver/components/control_volume_forces.hpp"
+#include "solver/model/rigid_body.hpp"
 #include "solver/model/simulation.hpp"
 
 namespace refmap {
@@ -56,10 +56,9 @@ const SolidColumn kSolidColumns[] = {
 };
 
 /// The force the columns below report (output.body_force): a rigid body's direct forcing,
-/// or every body's control-volume balance (solver/components/control_volume_forces.hpp).
-const BodyLoad& body_load(const Simulation& sim, int k) {
-  return sim.control_volume_forces() ? sim.control_volume_forces()->load(k) : sim.bodies()->load(k);
-}
+/// or every body's control-volume balance, whichever component measures it
+/// (Simulation::solid_load); only called for a solid that has one (has_force).
+const BodyLoad& body_load(const Simulation& sim, int k) { return *sim.solid_load(k); }
 
 /// solids.csv columns after those for every solid k with a force (a rigid solid, motion != "free";
 /// with output.body_force = "control_volume" also a free soft solid, not a clamped one):
@@ -88,10 +87,7 @@ const Column kPicardColumns[] = {
     {"picard_cycles", false, [](const RowState& r) { return double(r.sim.picard_cycles()); }},
 };
 
-bool is_body(const Simulation& sim, int k) { return sim.bodies() && sim.bodies()->rigid(k); }
-bool has_force(const Simulation& sim, int k) {
-  return sim.control_volume_forces() ? sim.control_volume_forces()->has_load(k) : is_body(sim, k);
-}
+bool has_force(const Simulation& sim, int k) { return sim.solid_load(k) != nullptr; }
 
 bool any_force(const Simulation& sim) {
   for (int k = 0; k < int(sim.solids().size()); ++k)

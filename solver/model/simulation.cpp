@@ -56,8 +56,6 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
   hold_ = bodies_ && bodies_->holds();
   if (increment_)
     for (Field* f : {&gcx_n_, &gcy_n_, &vnx_, &vny_, &srcx_, &srcy_}) f->resize(nx, ny, ng);
-  if (bodies_ && cfg_.solid_picard > 0)
-    throw std::invalid_argument("time.solid_picard_iterations is not offered with rigid bodies");
   if (hold_ && cfg_.solid_time == SolidStressTime::UpperConvected)
     throw std::invalid_argument("solid.forcing_hold is not offered with time.solid_stress = \"upper_convected\"");
   poisson_ = make_poisson_solver(cfg_.poisson);
@@ -166,6 +164,13 @@ void Simulation::set_stage_probe(std::function<void(Stage, double dt)> probe) {
 }
 
 const ControlVolumeForces* Simulation::control_volume_forces() const { return component<ControlVolumeForces>(); }
+const BodyLoad* Simulation::solid_load(int k) const {
+  for (auto c = components_.rbegin(); c != components_.rend(); ++c) {
+    const BodyLoad* load = nullptr;
+    if ((*c)->solid_load(k, load)) return load;
+  }
+  return nullptr;
+}
 const Contact* Simulation::contact() const {
   const ContactComponent* c = component<ContactComponent>();
   return c ? &c->contact() : nullptr;

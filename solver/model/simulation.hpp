@@ -115,6 +115,10 @@ class Simulation {
   /// Bodies' forces from the fluid's momentum balance (output.body_force = "control_volume";
   /// solver/components/control_volume_forces.hpp), else null.
   const ControlVolumeForces* control_volume_forces() const;
+  /// The fluid's force and torque on solid k as the solids.csv columns report it: from the
+  /// last component added that measures loads (Component::solid_load), null if none does or
+  /// solid k has no load of its own.
+  const BodyLoad* solid_load(int k) const;
   /// Total momentum sum rho u dx^2 (x and y).
   std::pair<double, double> momentum() const;
 
