@@ -159,5 +159,32 @@ TEST(Components, RigidBodiesComeAfterContactAndTheStepCallsThePointsInOrder) {
   EXPECT_EQ(p->points, expected);
 }
 
+// With held cells (forcing_hold, the increment splitting) the bodies' component is also
+// called where the substeps form their rates: it makes the held cells at Substeps (before the
+// step's G_f^n), takes the rate of each RK-4 stage and of the explicit viscous step at Rates,
+// and with the implicit viscous step the solve's rates at HeldSolved instead of the last.
+TEST(Components, HeldCellsAreCalledAtTheSubstepsPoints) {
+  using P = StepPoint;
+  for (const bool implicit : {false, true}) {
+    const std::string body = "[[solid]]\nname = \"post\"\nshape = \"circle\"\ncenter = [0.5, 0.5]\nradius = 0.15\n"
+                             "density = 1.0\nmotion = \"fixed\"\nforcing = \"sharp\"\nforcing_hold = true\n";
+    std::string scene = box_scene(16, kWalls, body) + "\n";
+    Config c = load_scene_string(scene, "post.toml");
+    c.splitting = Splitting::Increment;
+    if (implicit) c.viscous_time = ViscousTime::Implicit;
+    Simulation sim(c);
+    ASSERT_NE(sim.components()[1]->held_cells(), nullptr);
+    auto log = std::make_unique<PointLog>();
+    PointLog* p = log.get();
+    sim.add_component(std::move(log));
+    sim.step();
+    std::vector<StepPoint> expected = {P::Begin, P::Substeps, P::FaceAccelerations, P::Rates, P::Rates, P::Rates,
+                                       P::Rates, P::Advected, implicit ? P::HeldSolved : P::Rates, P::Stressed,
+                                       P::PoissonCoefficients, P::Forces, P::FaceAccelerations, P::BeforePredictor,
+                                       P::Predicted, P::PressureUpdated, P::FaceAccelerations, P::End};
+    EXPECT_EQ(p->points, expected) << "implicit = " << implicit;
+  }
+}
+
 }  // namespace
 }  // namespace refmap

@@ -4,6 +4,7 @@
 
 #include "solver/io/checkpoint_io.hpp"
 #include "solver/io/state_registry.hpp"
+#include "solver/model/implicit_step.hpp"
 #include "solver/model/simulation.hpp"
 
 namespace refmap {
@@ -47,8 +48,30 @@ void RigidBodiesComponent::at(StepPoint p, Simulation& sim, double dt) {
     case StepPoint::PressureUpdated:  // cut out of the solve: the fluid's pressure inside
       if (cuts_) bodies_.fill_inside_pressure(sim.solids(), sim.p_mut(), g);
       break;
+    case StepPoint::Substeps:  // forcing_hold: the cells held through the substeps
+      if (holds_) bodies_.held_cells(sim.solids(), g, held_);
+      break;
+    case StepPoint::Rates:  // an RK-4 stage's or the explicit stress step's rate
+      if (holds_) hold_rates(sim.rate_x_mut(), sim.rate_y_mut(), sim.rate_weight(), g);
+      break;
+    case StepPoint::HeldSolved:  // the implicit solve's rates at the held cells (held exactly)
+      if (holds_) {
+        const auto& r = sim.implicit_velocity()->held_rate();
+        for (std::size_t n = 0; n < held_.size(); ++n)
+          bodies_.add_held(held_[n][2], held_[n][0], held_[n][1], dt * r[n][0], dt * r[n][1], g);
+      }
+      break;
     default:
       break;
+  }
+}
+
+void RigidBodiesComponent::hold_rates(View kx, View ky, double w, const Grid& g) {
+  for (const auto& c : held_) {
+    const int i = c[0], j = c[1];
+    bodies_.add_held(c[2], i, j, w * kx(i, j), w * ky(i, j), g);
+    kx(i, j) = 0.0;
+    ky(i, j) = 0.0;
   }
 }
 

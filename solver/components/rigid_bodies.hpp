@@ -31,7 +31,8 @@ namespace refmap {
 
 class RigidBodiesComponent : public Component {
  public:
-  explicit RigidBodiesComponent(const Config& cfg) : bodies_(cfg), cuts_(bodies_.cuts_faces()) {}
+  explicit RigidBodiesComponent(const Config& cfg)
+      : bodies_(cfg), cuts_(bodies_.cuts_faces()), holds_(bodies_.holds()) {}
 
   RigidBodies& bodies() { return bodies_; }
   const RigidBodies& bodies() const { return bodies_; }
@@ -50,14 +51,24 @@ class RigidBodiesComponent : public Component {
   /// is the same place: after sigma_max and the contact's gaps
   const char* solid_columns_after() const override { return "torque"; }
   /// The forcing's load on every rigid body (the momentum it removes, solver/model/rigid_body.hpp).
+  /// forcing_hold: the cells the forcing sets, held through the substeps (made at
+  /// StepPoint::Substeps); their rates at StepPoint::Rates and HeldSolved are the momentum
+  /// the hold takes, booked to the body (RigidBodies::add_held) and zeroed.
+  const std::vector<std::array<int, 3>>* held_cells() const override { return holds_ ? &held_ : nullptr; }
   bool solid_load(int k, const BodyLoad*& load) const override {
     load = bodies_.rigid(k) ? &bodies_.load(k) : nullptr;
     return true;
   }
 
  private:
+  /// The held cells' rates (weight w) into the bodies' held momentum, and zeroed there
+  /// (serial: a body's few hundred cells, and the sums must have the same bits for any threads).
+  void hold_rates(View kx, View ky, double w, const Grid& g);
+
   RigidBodies bodies_;
-  bool cuts_;  ///< a body with forcing = "sharp"
+  bool cuts_;   ///< a body with forcing = "sharp"
+  bool holds_;  ///< a body with forcing_hold
+  std::vector<std::array<int, 3>> held_;  ///< the held cells of this step: i, j, body
 };
 
 }  // namespace refmap

@@ -17,6 +17,7 @@
 // A scene's components are made by their kinds (solver/model/component_kind.hpp: keys, parser,
 // factory), so adding one takes its own files and one registration - or add_component()
 // from outside, as the tests do.
+#include <array>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -37,6 +38,21 @@ class StateRegistry;
 enum class StepPoint {
   /// Before anything moves; dt is already chosen (the state is that of time t).
   Begin,
+  /// At the start of the velocity's substeps (step 4), after the solids moved (xi^{n+1},
+  /// rho^{n+1}), before the first rate: data the substeps keep fixed (the rigid bodies' held
+  /// cells). Only when a component holds cells (Component::held_cells) or with
+  /// time.splitting = "increment". Not timed on its own ("advection").
+  Substeps,
+  /// Each time a rate of the velocity's substeps is formed, before it is applied: every RK-4
+  /// stage of the advection (the stage's rate of rho u, weight dt w_s with w = 1, 2, 2, 1 over
+  /// 6) and the explicit viscous and stress force of eq. (5.2) (weight dt):
+  /// Simulation::rate_x_mut(), rate_y_mut(), rate_weight(). Only when a component holds cells.
+  /// Not timed on its own (booked in "advection" and "viscous").
+  Rates,
+  /// After the implicit velocity solve with held cells (solver/model/implicit_step.hpp):
+  /// ImplicitVelocity::held_rate() holds, per held cell, the rate the solve kept from it. Only
+  /// when a component holds cells. Not timed on its own ("implicit velocity").
+  HeldSolved,
   /// After step 4, eq. (5.1): u(), v() hold u*, rho() rho^{n+1}, the solids xi^{n+1}.
   Advected,
   /// After eq. (5.2): u(), v() hold u**, solid_stress_*() the stress the step used.
@@ -126,6 +142,11 @@ class Component {
   /// a body). The last component added that measures loads answers for every solid
   /// (Simulation::solid_load): the control-volume balance, when on, replaces the forcing's.
   virtual bool solid_load(int /*k*/, const BodyLoad*& /*load*/) const { return false; }
+  /// The cells whose velocity it holds through the step's substeps (i, j, solid; made at
+  /// StepPoint::Substeps), or null if it holds none: the RK-4 stages and the explicit stress
+  /// step then call it at StepPoint::Rates, and the implicit velocity solve keeps these cells
+  /// fixed and calls it at StepPoint::HeldSolved. Fixed for the run (null or not).
+  virtual const std::vector<std::array<int, 3>>* held_cells() const { return nullptr; }
   /// Its cell fields (name, nx x ny field) written into every VTK frame after the built-in
   /// ones (solver/app/run.cpp).
   virtual std::vector<std::pair<std::string, const Field*>> frame_fields() const { return {}; }

@@ -53,11 +53,11 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
     components_.push_back(std::move(b));
   }
   increment_ = cfg_.splitting == Splitting::Increment;
-  hold_ = bodies_ && bodies_->holds();
   if (increment_)
     for (Field* f : {&gcx_n_, &gcy_n_, &vnx_, &vny_, &srcx_, &srcy_}) f->resize(nx, ny, ng);
-  if (hold_ && cfg_.solid_time == SolidStressTime::UpperConvected)
-    throw std::invalid_argument("solid.forcing_hold is not offered with time.solid_stress = \"upper_convected\"");
+  for (const auto& c : components_)  // the rigid bodies' forcing_hold (the early components)
+    if (c->held_cells() && cfg_.solid_time == SolidStressTime::UpperConvected)
+      throw std::invalid_argument("solid.forcing_hold is not offered with time.solid_stress = \"upper_convected\"");
   poisson_ = make_poisson_solver(cfg_.poisson);
   if (cfg_.viscous_time == ViscousTime::Implicit || cfg_.solid_time != SolidStressTime::Explicit) {
     implicit_ = std::make_unique<ImplicitVelocity>(cfg_);
@@ -78,6 +78,12 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
   initialise();
   register_state();
   add_components();
+  // the component that holds cells through the substeps, if any (Component::held_cells)
+  for (const auto& c : components_)
+    if (const auto* h = c->held_cells()) {
+      if (held_) throw std::invalid_argument("two components hold cells through the substeps");
+      held_ = h;
+    }
 }
 
 void Simulation::register_state() {
@@ -529,7 +535,7 @@ void Simulation::advect_momentum(double dt) {
   const int nx = g.nx, ny = g.ny;
   const FluxScheme scheme = cfg_.advection;
   const double t = t_;
-  if (increment_ || hold_) begin_substeps(dt);
+  if (increment_ || held_) begin_substeps(dt);
   parallel_rows(0, ny, nx, [&](int j) {
     for (int i = 0; i < nx; ++i) {
       mx_(i, j) = rho_old_(i, j) * u_(i, j);
@@ -573,7 +579,7 @@ void Simulation::advect_momentum(double dt) {
         }
       });
     // held cells: their rate is the momentum the hold takes (RK-4 weights 1, 2, 2, 1 over 6)
-    if (hold_) hold_rates(kx, ky, dt * (stage == 1 || stage == 4 ? 1.0 : 2.0) / 6.0);
+    if (held_) call_rates(kx, ky, dt * (stage == 1 || stage == 4 ? 1.0 : 2.0) / 6.0, dt);
   });
   // u* = (rho u)* / rho^{n+1}
   parallel_rows(0, ny, nx, [&](int j) {
@@ -631,17 +637,13 @@ void Simulation::apply_viscous_and_solid_stress(double dt) {
       rate_coefficients(dt);
       implicit_->apply_rate(u_, v_, fx_, fy_, rho_, mimp_, qxx_, qxy_, qyy_, dt);
     } else {
-      implicit_->set_held(hold_ ? &held_ : nullptr);
+      implicit_->set_held(held_);
       if (defect_) picard_defect_force(dt);  // solver/model/solid_picard.cpp
       implicit_->apply(u_, v_, fx_, fy_, rho_, mimp_, dt);
-      if (hold_) {
-        const auto& r = implicit_->held_rate();
-        for (std::size_t n = 0; n < held_.size(); ++n)
-          bodies_->add_held(held_[n][2], held_[n][0], held_[n][1], dt * r[n][0], dt * r[n][1], g);
-      }
+      if (held_) call_components(StepPoint::HeldSolved, dt, false);  // the held cells' rates
     }
   } else if (viscous || elastic) {
-    if (hold_) hold_rates(fx_.view(), fy_.view(), dt);
+    if (held_) call_rates(fx_.view(), fy_.view(), dt, dt);
     apply_force(u_.view(), v_.view(), fx_.view(), fy_.view(), rho_.view(), dt, nx, ny);
   }
 }
@@ -649,7 +651,7 @@ void Simulation::apply_viscous_and_solid_stress(double dt) {
 void Simulation::begin_substeps(double dt) {
   const Grid& g = cfg_.grid;
   const int nx = g.nx, ny = g.ny;
-  if (hold_) bodies_->held_cells(solids_, g, held_);
+  call_components(StepPoint::Substeps, dt, false);  // the held cells (forcing_hold)
   if (!increment_) return;
   // G_f^n: the face accelerations of p^n (pressure, gravity, contact), as eq. (5.7) applied
   // them at the end of the last step; the cell average as correct_cell_velocity takes it
@@ -686,15 +688,11 @@ void Simulation::end_substeps(double dt) {
   });
 }
 
-void Simulation::hold_rates(View kx, View ky, double weight) {
-  // serial: a body's few hundred cells, and the sums must have the same bits for any threads
-  const Grid& g = cfg_.grid;
-  for (const auto& c : held_) {
-    const int i = c[0], j = c[1];
-    bodies_->add_held(c[2], i, j, weight * kx(i, j), weight * ky(i, j), g);
-    kx(i, j) = 0.0;
-    ky(i, j) = 0.0;
-  }
+void Simulation::call_rates(View kx, View ky, double weight, double dt) {
+  rate_x_ = kx;
+  rate_y_ = ky;
+  rate_w_ = weight;
+  call_components(StepPoint::Rates, dt, false);
 }
 
 void Simulation::implicit_viscosity(double dt) {

@@ -94,6 +94,11 @@ class Simulation {
   Field& uf_mut() { return uf_; }
   Field& vf_mut() { return vf_; }
   Field& p_mut() { return p_; }
+  /// For the components at StepPoint::Rates: the rate being formed (rho u per time, cell
+  /// field) and the weight that turns it into the momentum it adds over the step.
+  View rate_x_mut() { return rate_x_; }
+  View rate_y_mut() { return rate_y_; }
+  double rate_weight() const { return rate_w_; }
   const Sides& sides() const { return sides_; }
 
   /// Cell field by probe/output name: u, v, p, density, speed, vorticity (ghosts filled).
@@ -219,7 +224,8 @@ class Simulation {
   void end_substeps(double dt);
   /// Held cells: books dt (the rate of (kx, ky) at the held cells) times `weight` as the
   /// momentum the hold takes from their body, then zeroes the rate there.
-  void hold_rates(View kx, View ky, double weight);
+  /// StepPoint::Rates for the rate (kx, ky) of weight `weight` (rate_x_mut() ...).
+  void call_rates(View kx, View ky, double weight, double dt);
   /// The time the projection corrects the face velocities with: time.rhie_chow_dt, or dt.
   double projection_time(double dt) const;
 
@@ -270,11 +276,12 @@ class Simulation {
   /// is rigid. The held cells below still call it directly.
   RigidBodies* bodies_ = nullptr;
   bool increment_ = false;                 // time.splitting = "increment"
-  bool hold_ = false;                      // a rigid body with forcing_hold (bodies_->holds())
+  const std::vector<std::array<int, 3>>* held_ = nullptr;  // a component's held cells (held_cells)
+  View rate_x_, rate_y_;                   // the rate of StepPoint::Rates and its weight
+  double rate_w_ = 0.0;
   Field gcx_n_, gcy_n_;                    // increment: G_c^n, the cell average of the face accelerations
   Field vnx_, vny_;                        // increment: viscous force of u^n
   Field srcx_, srcy_;                      // increment: the advection's momentum source vn - rho_old G_c^n
-  std::vector<std::array<int, 3>> held_;   // the held cells of this step: i, j, body
   std::unique_ptr<PoissonSolver> poisson_;
   SolveStats last_stats_;
   std::unique_ptr<ImplicitVelocity> implicit_;  ///< implicit stress step (null: explicit)
