@@ -7,7 +7,10 @@
 #   bash bench/run_thread_governor.sh BIN [REPS] > runs.csv
 #   BUSY=1 bash bench/run_thread_governor.sh BIN [REPS] > runs_busy.csv
 # Knob: SCENES ("scene:grid:steps ...", grid 0 = the scene's own; scene from scenes/ or
-# bench/scenes/). Needs an otherwise idle machine: say so (the load column) when quoting.
+# bench/scenes/); BIN2: a second binary, compared with BIN instead of the passive variant (the
+# variants are then "A" = BIN and "B" = BIN2, both with the governor: two builds, e.g. of
+# another work threshold, results/threads.md). Needs an otherwise idle machine: say so (the
+# load column) when quoting.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=$1; REPS=${2:-3}; BUSY=${BUSY:-0}
@@ -22,13 +25,15 @@ for rep in $(seq "$REPS"); do
     sc=${g%%:*}; rest=${g#*:}; n=${rest%%:*}; steps=${rest##*:}
     f=scenes/$sc.toml; [[ -f $f ]] || f=bench/scenes/$sc.toml
     grid=(); [[ $n != 0 ]] && grid=(--set grid.nx="$n" --set grid.ny="$n")
-    for variant in passive_fixed governor; do
+    variants="passive_fixed governor"; [[ -n ${BIN2:-} ]] && variants="A B"
+    for variant in $variants; do
       for th in 1 2; do
         unset OMP_WAIT_POLICY GOMP_SPINCOUNT
         extra=()
         if [[ $variant == passive_fixed ]]; then export OMP_WAIT_POLICY=PASSIVE; extra=(--fixed-threads); fi
+        bin=$BIN; [[ $variant == B ]] && bin=$BIN2
         rm -rf "$TMP/run"
-        OMP_NUM_THREADS=$th "$BIN" run "$f" --out "$TMP/run" --threads "$th" --quiet "${grid[@]}" "${extra[@]}" \
+        OMP_NUM_THREADS=$th "$bin" run "$f" --out "$TMP/run" --threads "$th" --quiet "${grid[@]}" "${extra[@]}" \
           --set time.max_steps="$steps" --set output.vtk=false >/dev/null 2>&1 || true
         tot=$(awk -F, '$1=="total"{print $2}' "$TMP/run/timings.csv" 2>/dev/null || echo nan)
         sw=$(sed -n 's/^# thread_switches: //p' "$TMP/run/timings.csv" 2>/dev/null || echo nan)

@@ -258,13 +258,15 @@ ExtrapStats extrapolate_lsq(View xi_x, View xi_y, View2<std::uint8_t> known, int
 
   const View2<const std::uint8_t> kc = known;
   const CView cx = xi_x, cy = xi_y;
+  const long pmin = opt.parallel_min >= 0 ? opt.parallel_min
+                                         : (passive_wait() ? kLsqParallelMinPassive : kLsqParallelMin);
   for (int pass = 0; pass < opt.passes; ++pass) {
     const long n = long(w.cand.size());
     if (n == 0) break;
     w.val.resize(std::size_t(2 * n));
     const LsqWorkspace::Cell* cand = w.cand.data();
     double* val = w.val.data();
-    const long nfb = parallel_items_count(n >= opt.parallel_min ? omp_get_max_threads() : 1, n, [&](long c) {
+    const long nfb = parallel_items_count(n >= pmin ? omp_get_max_threads() : 1, n, [&](long c) {
       return long(fit_cell(cand[c].i, cand[c].j, cx, cy, kc, d, stencil, val[2 * c], val[2 * c + 1]));
     });
     for (long c = 0; c < n; ++c) {

@@ -27,6 +27,18 @@
 #include "kernels/extrapolate.hpp"
 
 namespace refmap {
+/// With spinning waits (refmap's default) a ring of 64 cells is worth a second thread: on one
+/// disc, 2 threads, the extrapolation phase took 0.123 s against 0.138 s at 256^2 (400 steps)
+/// and 0.070 against 0.093 s at 512^2 (120 steps), medians of 5 interleaved runs, 2026-12-07,
+/// AMD EPYC 2 cores, idle (results/threads.md, "The work threshold").
+inline constexpr int kLsqParallelMin = 64;
+/// With sleeping waits (OMP_WAIT_POLICY=passive) two threads made the phase slower even at
+/// ~1300 cells per pass (the 1024^2 disc of WholeSolidStep: 0.09-0.11 s against 0.07-0.08 s
+/// serially over 17 steps, 2026-12-02, AMD EPYC 2 cores), so only much longer rings are split.
+inline constexpr int kLsqParallelMinPassive = 8192;
+}  // namespace refmap
+
+namespace refmap {
 
 struct LsqOptions {
   int passes = 6;  ///< max passes = band width in cells (Algorithm 2 repeats until flag2)
@@ -38,11 +50,10 @@ struct LsqOptions {
   /// Optional flag2: only cells with target(i, j) != 0 may be filled (p == nullptr: any).
   /// Same window indexing as `known`.
   View2<const std::uint8_t> target{};
-  /// Passes with fewer candidate cells run on one thread. A pass fills one ring of the band
-  /// (about 2 pi R / dx cells): for the 1024^2 disc of WholeSolidStep (~1300 per pass) two
-  /// threads made the phase slower (0.09-0.11 s against 0.07-0.08 s serially over 17 steps,
-  /// 2026-12-02, AMD EPYC 2 cores, passive waits), so only much longer rings are split.
-  int parallel_min = 8192;
+  /// Passes with fewer candidate cells run on one thread; -1: by the wait policy
+  /// (kernels/loop.hpp), kLsqParallelMin or kLsqParallelMinPassive. A pass fills one ring of
+  /// the band (about 2 pi R / dx cells), each cell a least-squares fit of a few hundred flops.
+  int parallel_min = -1;
 };
 
 /// Reusable scratch space (no allocation per call once warmed up). Not thread-safe: one
