@@ -50,11 +50,11 @@ class RigidBodiesComponent : public Component {
   /// After the loads (fx, fy, torque); without them (no solid has a load) at the end, which
   /// is the same place: after sigma_max and the contact's gaps
   const char* solid_columns_after() const override { return "torque"; }
-  /// The forcing's load on every rigid body (the momentum it removes, solver/model/rigid_body.hpp).
   /// forcing_hold: the cells the forcing sets, held through the substeps (made at
   /// StepPoint::Substeps); their rates at StepPoint::Rates and HeldSolved are the momentum
   /// the hold takes, booked to the body (RigidBodies::add_held) and zeroed.
   const std::vector<std::array<int, 3>>* held_cells() const override { return holds_ ? &held_ : nullptr; }
+  /// The forcing's load on every rigid body (the momentum it removes, solver/model/rigid_body.hpp).
   bool solid_load(int k, const BodyLoad*& load) const override {
     load = bodies_.rigid(k) ? &bodies_.load(k) : nullptr;
     return true;
