@@ -7,6 +7,11 @@ namespace refmap {
 
 namespace {
 
+/// The work of one cell of the right-hand side in cells of a simple row loop (the unit of
+/// kMinParallelCells, kernels/loop.hpp): four limited face values and their velocities per
+/// component. A solid's box of ~10 000 cells (one disc on 256^2) is then threaded.
+constexpr int kRhsCellCost = 4;
+
 /// van Leer-limited face value, q_f = qu + 0.5 psi(r) (qd - qu), psi(r) = (r + |r|) / (1 + |r|):
 /// qu + e d / (e + d) with e = qu - quu, d = qd - qu when e d > 0, else qu (the harmonic mean
 /// of the two slopes; r = 1 gives the central value)
@@ -37,7 +42,7 @@ void rhs_impl(CView xi_x, CView xi_y, CView phi, CView uf, CView vf, int ni, int
       return f - qc;
     }
   };
-  parallel_rows(0, nj, ni, [&](int j) {
+  parallel_rows(0, nj, ni * kRhsCellCost, [&](int j) {
     for (int i = 0; i < ni; ++i) {
       if (!(phi(i, j) < 0.0)) {  // H = 0 outside Omega_S, eq. (3.4)
         kx(i, j) = 0.0;
@@ -80,7 +85,7 @@ void reference_map_rhs_cell(CView xi_x, CView xi_y, CView phi, CView u, CView v,
 void reference_map_rhs_cell(CView xi_x, CView xi_y, CView phi, CView u, CView v, int ni, int nj, int i0, int j0,
                             double dx, View kx, View ky) {
   const double s = -0.5 / dx;
-  parallel_rows(0, nj, ni, [&](int j) {
+  parallel_rows(0, nj, ni * kRhsCellCost, [&](int j) {
     for (int i = 0; i < ni; ++i) {
       if (!(phi(i, j) < 0.0)) {  // H = 0 outside Omega_S, eq. (3.4)
         kx(i, j) = 0.0;
