@@ -17,7 +17,6 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "solver/components/control_volume_forces.hpp"
@@ -61,6 +60,25 @@ std::vector<std::string> diffuse_study(const std::vector<std::string>& sets) {
                                "solid[0].forcing_interpolation=\"linear\""};
   all.insert(all.end(), sets.begin(), sets.end());
   return all;
+}
+
+struct CylinderResult {
+  double cd, dp;
+};
+
+/// The scene with `sets`, run (no VTK): c_D and Delta p at its end, printed under `label`.
+CylinderResult run_cylinder(const char* label, const std::vector<std::string>& sets) {
+  Config cfg = load_scene(scene_path("cylinder_re20.toml"), sets);
+  cfg.write_vtk = false;
+  Simulation sim(cfg);
+  RunSummary r = run(sim, RunOptions::silent());
+  EXPECT_FALSE(r.failed) << r.failure;
+  const Field p = sim.named_field("p");
+  const double cd = sim.bodies()->load(0).fx / kQ, cl = sim.bodies()->load(0).fy / kQ;
+  const double dp = sample_bilinear(cfg.grid, p, 0.15, 0.2) - sample_bilinear(cfg.grid, p, 0.25, 0.2);
+  std::printf("[cylinder, %s] dt = %.6g, %ld steps, t = %.3f: c_D = %.6f, c_L = %.5f, Delta p = %.5f\n", label,
+              cfg.dt_fixed, sim.steps(), sim.time(), cd, cl, dp);
+  return {cd, dp};
 }
 }  // namespace
 
@@ -106,25 +124,12 @@ TEST(Cylinder, Re20DragAndPressureDifferenceOnCoarseGrid) {
 // 1.2 % there.
 TEST(Cylinder, Re20SceneAsShippedDragAsQuotedAndFreeOfDt) {
   constexpr double kCdTolScene = 0.035 + 0.010, kDpTolScene = 0.0055 + 0.0028;
-  auto run_scene = [](const std::vector<std::string>& sets) {
-    Config cfg = load_scene(scene_path("cylinder_re20.toml"), sets);
-    cfg.write_vtk = false;
-    Simulation sim(cfg);
-    RunSummary r = run(sim, RunOptions::silent());
-    EXPECT_FALSE(r.failed) << r.failure;
-    const Field p = sim.named_field("p");
-    const double cd = sim.bodies()->load(0).fx / kQ, cl = sim.bodies()->load(0).fy / kQ;
-    const double dp = sample_bilinear(cfg.grid, p, 0.15, 0.2) - sample_bilinear(cfg.grid, p, 0.25, 0.2);
-    std::printf("[cylinder, scene as shipped] dt = %.6g, %ld steps, t = %.3f: c_D = %.6f, c_L = %.5f, Delta p = %.5f\n",
-                cfg.dt_fixed, sim.steps(), sim.time(), cd, cl, dp);
-    return std::pair<double, double>{cd, dp};
-  };
-  const auto [cd, dp] = run_scene({"time.max_steps=650"});
+  const auto [cd, dp] = run_cylinder("scene as shipped", {"time.max_steps=650"});
   EXPECT_NEAR(cd, kCdRef, kCdTolScene);
   EXPECT_NEAR(dp, kDpRef, kDpTolScene);
   expect_quoted("Cylinder.Re20Scene/cd", cd);
   expect_quoted("Cylinder.Re20Scene/dp", dp);
-  const auto [cd2, dp2] = run_scene({"time.max_steps=1300", "time.dt=0.004639"});
+  const auto [cd2, dp2] = run_cylinder("scene as shipped", {"time.max_steps=1300", "time.dt=0.004639"});
   EXPECT_LT(std::abs(cd2 / cd - 1.0), 1e-5);
   EXPECT_LT(std::abs(dp2 / dp - 1.0), 1e-5);
 }
@@ -137,22 +142,8 @@ namespace {
 // Delta p -0.0046, -0.0027 -> 0.0046 + 0.0019.
 constexpr double kCdTolSharp = 0.134 + 0.168, kDpTolSharp = 0.0046 + 0.0019;
 
-struct CylinderResult {
-  double cd, dp;
-};
-
 CylinderResult run_sharp(const std::string& dt, const std::string& steps) {
-  Config cfg = load_scene(scene_path("cylinder_re20.toml"),
-                          diffuse_study({"time.max_steps=" + steps, "time.dt=" + dt, "solid[0].forcing=\"sharp\""}));
-  cfg.write_vtk = false;
-  Simulation sim(cfg);
-  RunSummary r = run(sim, RunOptions::silent());
-  EXPECT_FALSE(r.failed) << r.failure;
-  const Field p = sim.named_field("p");
-  const double dp = sample_bilinear(cfg.grid, p, 0.15, 0.2) - sample_bilinear(cfg.grid, p, 0.25, 0.2);
-  std::printf("[cylinder, sharp] dt = %s, %ld steps, t = %.3f: c_D = %.5f, c_L = %.5f, Delta p = %.5f\n", dt.c_str(),
-              sim.steps(), sim.time(), sim.bodies()->load(0).fx / kQ, sim.bodies()->load(0).fy / kQ, dp);
-  return {sim.bodies()->load(0).fx / kQ, dp};
+  return run_cylinder("sharp", diffuse_study({"time.max_steps=" + steps, "time.dt=" + dt, "solid[0].forcing=\"sharp\""}));
 }
 }  // namespace
 

@@ -55,9 +55,6 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
   increment_ = cfg_.splitting == Splitting::Increment;
   if (increment_)
     for (Field* f : {&gcx_n_, &gcy_n_, &vnx_, &vny_, &srcx_, &srcy_}) f->resize(nx, ny, ng);
-  for (const auto& c : components_)  // the rigid bodies' forcing_hold (the early components)
-    if (c->held_cells() && cfg_.solid_time == SolidStressTime::UpperConvected)
-      throw std::invalid_argument("solid.forcing_hold is not offered with time.solid_stress = \"upper_convected\"");
   poisson_ = make_poisson_solver(cfg_.poisson);
   if (cfg_.viscous_time == ViscousTime::Implicit || cfg_.solid_time != SolidStressTime::Explicit) {
     implicit_ = std::make_unique<ImplicitVelocity>(cfg_);
@@ -84,6 +81,8 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
       if (held_) throw std::invalid_argument("two components hold cells through the substeps");
       held_ = h;
     }
+  if (held_ && cfg_.solid_time == SolidStressTime::UpperConvected)
+    throw std::invalid_argument("solid.forcing_hold is not offered with time.solid_stress = \"upper_convected\"");
 }
 
 void Simulation::register_state() {
