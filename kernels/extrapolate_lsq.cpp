@@ -258,8 +258,7 @@ ExtrapStats extrapolate_lsq(View xi_x, View xi_y, View2<std::uint8_t> known, int
 
   const View2<const std::uint8_t> kc = known;
   const CView cx = xi_x, cy = xi_y;
-  const long pmin = opt.parallel_min >= 0 ? opt.parallel_min
-                                         : (passive_wait() ? kLsqParallelMinPassive : kLsqParallelMin);
+  const long pmin = opt.parallel_min >= 0 ? opt.parallel_min : kLsqParallelMin;
   for (int pass = 0; pass < opt.passes; ++pass) {
     const long n = long(w.cand.size());
     if (n == 0) break;

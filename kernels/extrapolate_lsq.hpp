@@ -27,15 +27,15 @@
 #include "kernels/extrapolate.hpp"
 
 namespace refmap {
-/// With spinning waits (refmap's default) a ring of 64 cells is worth a second thread: on one
-/// disc, 2 threads, the extrapolation phase took 0.123 s against 0.138 s at 256^2 (400 steps)
-/// and 0.070 against 0.093 s at 512^2 (120 steps), medians of 5 interleaved runs, 2026-12-07,
-/// AMD EPYC 2 cores, idle (results/threads.md, "The work threshold").
-inline constexpr int kLsqParallelMin = 64;
-/// With sleeping waits (OMP_WAIT_POLICY=passive) two threads made the phase slower even at
-/// ~1300 cells per pass (the 1024^2 disc of WholeSolidStep: 0.09-0.11 s against 0.07-0.08 s
-/// serially over 17 steps, 2026-12-02, AMD EPYC 2 cores), so only much longer rings are split.
-inline constexpr int kLsqParallelMinPassive = 8192;
+/// A pass fills one ring of the band; passes with fewer cells than this run on one thread.
+/// A ring of a disc at 256^2-1024^2 (300-1300 cells, ~15 us of fits at 256^2) is too short
+/// for a parallel region: splitting from 64 cells made the extrapolation phase of one disc on
+/// 2 threads slower, 0.238 s against 0.142 s serially at 256^2 (400 steps) and 0.123 against
+/// 0.111 s at 512^2 (120 steps), and no faster at 1024^2, with spinning waits (2026-12-07, AMD
+/// EPYC 2 cores; results/threads.md, "The least-squares passes"); with sleeping waits
+/// (OMP_WAIT_POLICY=passive) the 1024^2 disc was slower too (0.09-0.11 s against 0.07-0.08 s
+/// over 17 steps, 2026-12-02). So only rings of very large solids are split.
+inline constexpr int kLsqParallelMin = 8192;
 }  // namespace refmap
 
 namespace refmap {
@@ -50,8 +50,7 @@ struct LsqOptions {
   /// Optional flag2: only cells with target(i, j) != 0 may be filled (p == nullptr: any).
   /// Same window indexing as `known`.
   View2<const std::uint8_t> target{};
-  /// Passes with fewer candidate cells run on one thread; -1: by the wait policy
-  /// (kernels/loop.hpp), kLsqParallelMin or kLsqParallelMinPassive. A pass fills one ring of
+  /// Passes with fewer candidate cells run on one thread; -1: kLsqParallelMin. A pass fills one ring of
   /// the band (about 2 pi R / dx cells), each cell a least-squares fit of a few hundred flops.
   int parallel_min = -1;
 };
