@@ -388,6 +388,7 @@ TEST(ContactScene, KeysAreValidatedWithOneLineErrors) {
   EXPECT_NE(message({"contact.range=0"}).find("contact.range"), std::string::npos);
   EXPECT_NE(message({"contact.stiffness=-1"}).find("contact.stiffness: must be >= 0"), std::string::npos);
   EXPECT_NE(message({"contact.velocity_scale=-1"}).find("contact.velocity_scale"), std::string::npos);
+  EXPECT_NE(message({"contact.cfl=0"}).find("contact.cfl: must be > 0"), std::string::npos);
   EXPECT_NE(message({"contact.stifness=1"}).find("contact.stifness: unknown key"), std::string::npos);
   EXPECT_NE(message({"contact.enabled=1"}).find("contact.enabled: expected true or false"), std::string::npos);
 }
@@ -419,14 +420,14 @@ TEST(ContactTimeStep, FirstStepDoesNotDependOnTheEndTime) {
 // (here the viscous one, 2.3x the spring's), near contact by the spring.
 TEST(ContactTimeStep, SpringLimitOnlyInStepsThatCanCloseAGap) {
   const double dx = 1.0 / 64;
-  auto scene_with_gap = [&](double gap_cells) {
+  auto scene_with_gap = [&](double gap_cells, const char* extra = "contact.cfl=0.5") {
     // disc b at a known gap from disc a (as in ContactGap above), both soft enough that
     // their own limit does not bind; a fixed contact velocity scale, so the spring is on
     const double D = 0.15 + 0.12 + gap_cells * dx, theta = 0.37;
     char c[128];
     std::snprintf(c, sizeof c, "solid[1].center=[%.17g, %.17g]", 0.3 + D * std::cos(theta), 0.4 + D * std::sin(theta));
     return load_scene_string(kGapScene, "gaps.toml",
-                             {c, "solid[0].mu_s=1", "solid[1].mu_s=1", "contact.velocity_scale=1"});
+                             {c, "solid[0].mu_s=1", "solid[1].mu_s=1", "contact.velocity_scale=1", extra});
   };
   {
     Simulation sim(scene_with_gap(5.0));  // d = 2.5 dx: 2.5 dx to spare (+-0.1 dx sampling)

@@ -177,6 +177,7 @@ std::shared_ptr<const ComponentOptions> parse_contact(const TomlTable& top, cons
                 ") cells (the level sets are only known within the band), got " + toml_text::fmt_num(o->range));
   o->stiffness = c.number("stiffness");
   o->velocity_scale = c.number("velocity_scale");
+  o->cfl = c.number("cfl");
   return o;
 }
 
@@ -205,6 +206,9 @@ ComponentKind contact_kind() {
           "P, the contact pressure at zero gap, in units of ρ_max U² (independent of the solids' `mu_s`)"),
       num("contact", "velocity_scale", d.velocity_scale, ge(0, "0 = automatic"),
           "U; 0 = automatic: the initial and free-fall speeds, raised to the fastest solid seen"),
+      num("contact", "cfl", d.cfl, gt(0),
+          "the contact spring's step bound dt ≤ cfl / ω, in a step that can bring a surface into range "
+          "(docs/contact.md)"),
   };
   k.parse = parse_contact;
   k.make = make_contact;

@@ -45,6 +45,7 @@ Contact::Contact(const Config& cfg, const ContactOptions& o, double velocity_sca
   }
   force_ = o.enabled && cfg.flow == FlowMode::Solve;
   d_ = o.range * g_.dx;
+  cfl_ = o.cfl;
   h_ = 2.0 * g_.dx;
   double rho_max = cfg.rho_f;
   for (const SolidSpec& s : cfg.solids) rho_max = std::max(rho_max, s.density);
@@ -82,7 +83,7 @@ void Contact::see_speed(double speed) {
 double Contact::min_dt(double rho_min) const {
   if (!force_ || P_ <= 0.0) return 1e300;
   const double omega2 = 2.0 * 3.0 * P_ / (d_ * rho_min * h_);
-  return 0.5 / std::sqrt(omega2);
+  return cfl_ / std::sqrt(omega2);
 }
 
 bool Contact::clear_of_contact(double speed, double dt) const {

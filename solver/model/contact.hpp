@@ -52,8 +52,9 @@
 // then measured the contact law, not the solid.)
 //
 // THE TIME STEP. The layer is a spring of stiffness dp_c/ds = 3P/d at s = 0 acting on a
-// layer of mass rho h per unit area, rho >= (rho_s + rho_f)/2 there: dt <= 0.5 / omega,
-// omega^2 = 2 * 3P / (d rho h) (the factor 2 is a margin for s < 0, where it stiffens).
+// layer of mass rho h per unit area, rho >= (rho_s + rho_f)/2 there: dt <= cfl / omega,
+// omega^2 = 2 * 3P / (d rho h) (the factor 2 is a margin for s < 0, where it stiffens);
+// contact.cfl = 0.5 by default, a margin of 4 on the explicit spring's limit omega dt < 2.
 // That is about 0.1 dx / U, so it bound most steps of every scene with solids although the
 // force is zero while every gap exceeds d; it is applied only in a step that can close a
 // gap to d (clear_of_contact: a surface moves at most (|u| + |v|)_max dt in a step, since xi
@@ -124,6 +125,7 @@ struct ContactOptions : ComponentOptions {
   double range = 2.5;          ///< d_c in cells: the force acts once a gap is below d_c
   double stiffness = 20.0;     ///< contact pressure at zero gap, in units of rho_max U^2
   double velocity_scale = 0.0; ///< U; 0 = automatic (see above)
+  double cfl = 0.5;            ///< dt <= cfl / omega in a step that can reach contact (see above)
 };
 
 /// The run's [contact] options: those the kind read from the scene (Config::components),
@@ -233,7 +235,7 @@ class Contact {
   std::array<bool, 4> wall_{};
   Sides sides_;
   bool force_ = false;
-  double P_ = 0.0, d_ = 0.0, h_ = 0.0, sentinel_ = 0.0;
+  double P_ = 0.0, d_ = 0.0, h_ = 0.0, cfl_ = 0.5, sentinel_ = 0.0;
   double U_ = 0.0, P_unit_ = 0.0;  ///< U and stiffness rho_max (P = P_unit_ U^2)
   bool auto_U_ = true;             ///< contact.velocity_scale = 0: U follows see_speed
   std::vector<double> gap_solid_, gap_wall_;
