@@ -46,7 +46,7 @@ for c in ${CASES:-fsi2 fsi3}; do
   [ -n "${END:-}" ] && extra+=(--set "time.end=$END")
   for kv in ${SETS:-}; do extra+=(--set "$kv"); done
   OMP_NUM_THREADS="${THREADS:-1}" nice "$BIN" run "scenes/turek_hron_$c.toml" --out "$out" --quiet \
-    "${extra[@]}" > "$RAW/$c.log" 2>&1 &
+    "${extra[@]}" > "$RAW/$c$tag.log" 2>&1 &
   pid=$!
   prune "$out" "$pid" &
   status=0
@@ -54,7 +54,7 @@ for c in ${CASES:-fsi2 fsi3}; do
   wait
   t_end=()
   if [ "$status" -ne 0 ]; then
-    tail -n 3 "$RAW/$c.log" >&2
+    tail -n 3 "$RAW/$c$tag.log" >&2
     # a run that blew up (exit 3) is still summarised, over the window that ends a tenth of a
     # second before its last diagnostics row (the blow-up itself left out), and its CSV says so
     [ "$status" -eq 3 ] || exit 1
@@ -62,7 +62,7 @@ for c in ${CASES:-fsi2 fsi3}; do
   fi
   rho_s=$(grep -m1 '^density = ' <(sed -n '/^name = "flag"/,$p' "scenes/turek_hron_$c.toml") | awk '{print $3}')
   /usr/bin/python3 bench/fsi_summary.py "$out" "${c^^}" "$rho_s" "${WINDOW:-2}" "${SMOOTH:-0.01}" "${t_end[@]}" > "results/turek_hron_$c$tag.csv"
-  [ "$status" -eq 0 ] || grep -m1 'simulation failed' "$RAW/$c.log" | sed 's/^refmap: error: /# FAILED: /' >> "results/turek_hron_$c$tag.csv"
+  [ "$status" -eq 0 ] || grep -m1 'simulation failed' "$RAW/$c$tag.log" | sed 's/^refmap: error: /# FAILED: /' >> "results/turek_hron_$c$tag.csv"
   /usr/bin/python3 bench/fsi_plot.py "$out" "results/figures/turek_hron_$c${tag}_tip.png" "${t_end[@]}"
   last=$(ls "$out"/frame_[0-9]*.vti | tail -n 1)
   /usr/bin/python3 bench/fsi_snapshot.py "$last" "results/figures/turek_hron_$c${tag}_snapshot.png"
