@@ -247,6 +247,9 @@ struct Config {
   /// the stabilising operator (its term vanishes at convergence) instead of repeating the step
   bool solid_picard_defect = true;
   PicardForce solid_picard_force = PicardForce::New;  ///< time.solid_picard_force
+  /// time.solid_picard_tol: the relative tolerance of the pressure and velocity solves in every
+  /// pass but the last (never tighter than solver.tol and implicit_tol; 0: those in every pass)
+  double solid_picard_tol = 1e-4;
   int solid_rate_sweeps = 1;  ///< time.solid_rate_sweeps: outer block Gauss-Seidel sweeps of the upper-convected step (1: cross terms lagged)
   /// time.implicit_tol: relative residual of the implicit velocity solve (the velocity
   /// change d over a step; solver/model/implicit_step.hpp); looser than the pressure's solver.tol

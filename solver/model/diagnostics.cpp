@@ -81,10 +81,12 @@ const Column kImplicitColumns[] = {
 };
 
 /// Written after those, only with time.solid_picard_iterations > 0 (solver/model/solid_picard.cpp):
-/// the last iteration's relative velocity change and the multigrid cycles of all the step's passes.
+/// the last iteration's relative velocity change, the multigrid cycles of all the step's passes
+/// and, of them, the velocity solves' cycles.
 const Column kPicardColumns[] = {
     {"picard_change", false, [](const RowState& r) { return r.sim.picard_change(); }},
     {"picard_cycles", false, [](const RowState& r) { return double(r.sim.picard_cycles()); }},
+    {"picard_velocity_cycles", false, [](const RowState& r) { return double(r.sim.picard_velocity_cycles()); }},
 };
 
 bool has_force(const Simulation& sim, int k) { return sim.solid_load(k) != nullptr; }

@@ -29,7 +29,8 @@ PoissonOptions velocity_solver_options(const Config& cfg) {
 
 }  // namespace
 
-ImplicitVelocity::ImplicitVelocity(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg.bc)) {
+ImplicitVelocity::ImplicitVelocity(const Config& cfg)
+    : cfg_(cfg), sides_(face_sides(cfg.bc)), tol_(cfg.implicit_tol) {
   const int nx = cfg_.grid.nx, ny = cfg_.grid.ny, ng = Grid::ng;
   for (int comp = 0; comp < 2; ++comp)
     for (int s = 0; s < 4; ++s)  // component 0 (u) is normal to the left and right sides
@@ -121,6 +122,11 @@ void ImplicitVelocity::held_rates(int comp, const Field& f, const Field& d, bool
   }
 }
 
+void ImplicitVelocity::set_tol(double tol) {
+  tol_ = tol;
+  for (auto& s : solver_) s->set_tol(tol);
+}
+
 void ImplicitVelocity::predict_changes(double dt) {
   const Grid& g = cfg_.grid;
   // Initial guesses: the rate d / dt extrapolated linearly in time from the last two steps
@@ -161,7 +167,7 @@ void ImplicitVelocity::apply(Field& u, Field& v, const Field& fx, const Field& f
       nu2 += fx(i, j) * fx(i, j);
       nv2 += fy(i, j) * fy(i, j);
     }
-  const double lim2 = cfg_.implicit_tol * cfg_.implicit_tol * (nu2 + nv2);
+  const double lim2 = tol_ * tol_ * (nu2 + nv2);
   auto solve_or_skip = [&](int comp, const Field& f, double n2, Field& d) {
     if (n2 <= lim2) {
       d.fill(0.0);
@@ -238,7 +244,7 @@ void ImplicitVelocity::apply_rate(Field& u, Field& v, const Field& fx, const Fie
   double nf2 = 0.0;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) nf2 += fx(i, j) * fx(i, j) + fy(i, j) * fy(i, j);
-  const double lim2 = cfg_.implicit_tol * cfg_.implicit_tol * nf2;
+  const double lim2 = tol_ * tol_ * nf2;
   // The first sweep leaves the cross terms out (lagged at u*); each further sweep takes them
   // at the previous sweep's solution. Not at the extrapolated initial guess: the cross terms
   // of the guess fed back through the next step's extrapolation and grew (couette_elastic

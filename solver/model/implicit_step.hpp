@@ -68,6 +68,11 @@ class ImplicitVelocity {
   /// max |d change in the last outer sweep| / max |d| of the last apply_rate (0 with one sweep).
   double last_sweep_change() const { return sweep_change_; }
 
+  /// The relative tolerance of the next solves (time.implicit_tol until called; the
+  /// earlier passes of time.solid_picard_iterations loosen it, solver/model/solid_picard.cpp).
+  void set_tol(double tol);
+  double tol() const { return tol_; }
+
   /// The velocity change of component comp (0: u, 1: v) of the last apply().
   const Field& last_change(int comp) const { return comp == 0 ? du_ : dv_; }
   /// (ou, ov) = A(m) (du, dv): the compact operator of apply() without its rho/dt sink,
@@ -102,6 +107,7 @@ class ImplicitVelocity {
 
   Config cfg_;
   Sides sides_;
+  double tol_;  ///< the solves' relative tolerance (time.implicit_tol; set_tol)
   const std::vector<std::array<int, 3>>* held_ = nullptr;
   std::array<std::vector<std::array<double, 4>>, 2> held_beta_;
   std::vector<std::array<double, 2>> held_rate_;

@@ -165,6 +165,7 @@ class Simulation {
   /// cycles of all its solves (pressure and velocity, every iteration).
   double picard_change() const { return picard_change_; }
   long picard_cycles() const { return picard_cycles_; }
+  long picard_velocity_cycles() const { return picard_velocity_cycles_; }  ///< of them, the velocity solves'
 
  private:
   void initialise();
@@ -295,6 +296,7 @@ class Simulation {
   Field uk_, vk_, ufk_, vfk_;            ///< the last pass's end-of-step velocities
   double picard_change_ = 0.0;
   long picard_cycles_ = 0;
+  long picard_velocity_cycles_ = 0;
   /// time.solid_picard_force = "trapezoidal": the passes kick with (F^n + F^{n+1,(k)}) / 2
   /// through verlet_kick and the fields below (fpx_, fpy_, verlet_steps_ are then state)
   bool picard_trapezoid_ = false;

@@ -93,6 +93,9 @@ class PoissonSolver {
   virtual void setup(const PoissonOperator& op) = 0;
   /// Solve A x = rhs; x holds the initial guess on entry. Ghosts of x are used freely.
   virtual SolveStats solve(const Field& rhs, Field& x) = 0;
+  /// The relative residual the next solves stop at (PoissonOptions::tol until called).
+  virtual void set_tol(double tol) = 0;
+  virtual double tol() const = 0;
   virtual std::string name() const = 0;
 };
 

@@ -20,6 +20,8 @@ class CGSolver final : public PoissonSolver {
   void setup(const PoissonOperator& op) override;
   SolveStats solve(const Field& rhs, Field& x) override;
   std::string name() const override { return "cg(jacobi)"; }
+  void set_tol(double tol) override { opt_.tol = tol; }
+  double tol() const override { return opt_.tol; }
 
  private:
   mg::Stencil stencil() const;
@@ -38,6 +40,8 @@ class MGPCGSolver final : public PoissonSolver {
   void setup(const PoissonOperator& op) override;
   SolveStats solve(const Field& rhs, Field& x) override;
   std::string name() const override;
+  void set_tol(double tol) override { opt_.tol = tol; }
+  double tol() const override { return opt_.tol; }
   const MultigridHierarchy& hierarchy() const { return mg_; }
 
  private:

@@ -150,6 +150,8 @@ class MultigridSolver final : public PoissonSolver {
   void setup(const PoissonOperator& op) override;
   SolveStats solve(const Field& rhs, Field& x) override;
   std::string name() const override;
+  void set_tol(double tol) override { opt_.tol = tol; }
+  double tol() const override { return opt_.tol; }
   const MultigridHierarchy& hierarchy() const { return mg_; }
 
  private:

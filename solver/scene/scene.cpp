@@ -265,6 +265,7 @@ void parse_time(const Ctx& ctx, const Table& top, Config& cfg) {
             "solid_picard_defect", "needs solid_stress = \"semi_implicit\" (it corrects through its operator); "
             "set it false for plain repetitions of the step");
   cfg.solid_picard_force = t.option<PicardForce>("solid_picard_force");
+  cfg.solid_picard_tol = t.number("solid_picard_tol");
   t.require(cfg.solid_picard_force == PicardForce::New ||
                 (cfg.solid_picard > 0 && cfg.solid_time == SolidStressTime::SemiImplicit),
             "solid_picard_force", "\"trapezoidal\" needs solid_picard_iterations > 0 and solid_stress = "

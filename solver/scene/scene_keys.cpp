@@ -178,6 +178,10 @@ std::vector<KeyDef> build_keys() {
                           "trapezoidal rule; the defect iteration converges in one pass in the solid's interior at "
                           "solid_implicit_k = solid_picard_theta / 2); `\"trapezoidal\"` needs solid_stress = "
                           "\"semi_implicit\" and solid_picard_iterations > 0 (docs/implicit.md)"),
+      num("time", "solid_picard_tol", d.solid_picard_tol, in(0, false, 1, true),
+          "relative tolerance of the pressure and velocity solves in every pass of solid_picard_iterations but the "
+          "last, never tighter than solver.tol and implicit_tol (0: those in every pass); the earlier passes only "
+          "give the velocity that moves xi in the next, the last solves to the full tolerances (docs/implicit.md)"),
       integer("time", "solid_rate_sweeps", d.solid_rate_sweeps, in(1, false, 100, false),
               "outer block Gauss-Seidel sweeps (u, then v) of solid_stress = \"upper_convected\": the first "
               "without its cross terms (b_xy and the other component's derivatives: lagged), each further "
