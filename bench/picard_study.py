@@ -20,6 +20,7 @@ velocity solves' cycles alone in the same units (velocity_cost_pressure_units).
 
     python3 bench/picard_study.py            # the PLAN below (~15 min on a 2-core machine at load 10)
     python3 bench/picard_study.py --plan trapezoidal   # PLAN_TRAP: time.solid_picard_force = "trapezoidal"
+    python3 bench/picard_study.py --plan anderson      # PLAN_AA: time.solid_picard_anderson
     python3 bench/picard_study.py [--bin build/refmap] [--grid 64] [--methods a,b --mus 100,1e4 --ps 2,4,8]
 """
 import argparse
@@ -71,6 +72,13 @@ METHODS = {
     "picard_defect_th0.5_n6_r2": picard(6, 0.5) + ["time.solid_implicit_reach=2"],
     "picard_trap_n2_r0": trap(2, reach=0),
     "picard_trap_n2_r2_k0.5": trap(2, k=0.5),
+    # time.solid_picard_anderson = m: Anderson acceleration of the passes (depth m)
+    "picard_trap_n4_r2": trap(4),
+    "picard_trap_n2_r2_aa1": trap(2) + ["time.solid_picard_anderson=1"],
+    "picard_trap_n4_r2_aa2": trap(4) + ["time.solid_picard_anderson=2"],
+    "picard_trap_n8_r2_aa4": trap(8) + ["time.solid_picard_anderson=4"],
+    "picard_defect_th0.5_n2_r2_aa1": picard(2, 0.5) + ["time.solid_implicit_reach=2", "time.solid_picard_anderson=1"],
+    "picard_defect_th0.5_n4_r2_aa2": picard(4, 0.5) + ["time.solid_implicit_reach=2", "time.solid_picard_anderson=2"],
 }
 PLAN = [(["semi_k0.5", "picard_defect_th0.5_n2"], "100,1e4", "2,4,8"),
         (["picard_plain_th0.5_n2", "picard_defect_th1_n2"], "100,1e4", "8"),
@@ -80,6 +88,10 @@ PLAN = [(["semi_k0.5", "picard_defect_th0.5_n2"], "100,1e4", "2,4,8"),
 PLAN_TRAP = [(["picard_trap_n2_r2"], "100,1e4,1e5", "4,8"),
              (["picard_trap_n1_r2", "picard_trap_n3_r2", "picard_trap_n2_r0", "picard_trap_n2_r2_k0.5"], "100,1e4", "4,8"),
              (["picard_trap_n6_r2", "picard_defect_th0.5_n6_r2"], "100", "4")]
+# Anderson acceleration of the passes (--plan anderson): the trapezoidal force at N = 4 without
+# and with it, N = 8 with depth 4, and the force of xi^{n+1} with it
+PLAN_AA = [(["picard_trap_n4_r2", "picard_trap_n2_r2_aa1", "picard_trap_n4_r2_aa2", "picard_trap_n8_r2_aa4",
+             "picard_defect_th0.5_n2_r2_aa1", "picard_defect_th0.5_n4_r2_aa2"], "100,1e4", "4,8")]
 
 
 def run(binary, raw, tag, sets):
@@ -125,8 +137,9 @@ def main():
     ap.add_argument("--mus", default="100,1e4")
     ap.add_argument("--ps", default="2,4,8")
     ap.add_argument("--steps8", type=int, default=128, help="steps at P = 8 (sets the end time T)")
-    ap.add_argument("--plan", choices=["new", "trapezoidal"], default="new",
-                    help="without --methods: PLAN (the force of xi^{n+1}) or PLAN_TRAP (the trapezoidal force)")
+    ap.add_argument("--plan", choices=["new", "trapezoidal", "anderson"], default="new",
+                    help="without --methods: PLAN (the force of xi^{n+1}), PLAN_TRAP (the trapezoidal force) "
+                         "or PLAN_AA (Anderson acceleration of the passes)")
     a = ap.parse_args()
     path = os.path.join(a.out, "implicit_picard.csv")
     cols = ["method", "grid", "mu_s_over_rho_s", "P", "rc", "steps", "t_end", "e_max", "late_growth", "e_end",
@@ -134,7 +147,8 @@ def main():
             "cost_pressure_units", "velocity_cost_pressure_units", "wall_per_step", "failure"]
     old = disc_study.read_rows(path)  # rows of other (method, grid, mu, P) are kept
     n = a.grid
-    plan = [(a.methods.split(","), a.mus, a.ps)] if a.methods else (PLAN_TRAP if a.plan == "trapezoidal" else PLAN)
+    plans = {"new": PLAN, "trapezoidal": PLAN_TRAP, "anderson": PLAN_AA}
+    plan = [(a.methods.split(","), a.mus, a.ps)] if a.methods else plans[a.plan]
     refs = {}
     new = []
     for ms, mus, ps in plan:

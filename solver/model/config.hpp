@@ -250,6 +250,9 @@ struct Config {
   /// time.solid_picard_tol: the relative tolerance of the pressure and velocity solves in every
   /// pass but the last (never tighter than solver.tol and implicit_tol; 0: those in every pass)
   double solid_picard_tol = 1e-4;
+  /// time.solid_picard_anderson: history depth of the Anderson acceleration of the passes
+  /// (solver/model/picard_anderson.hpp; 0: none, each pass starts from the last one's result)
+  int solid_picard_anderson = 0;
   int solid_rate_sweeps = 1;  ///< time.solid_rate_sweeps: outer block Gauss-Seidel sweeps of the upper-convected step (1: cross terms lagged)
   /// time.implicit_tol: relative residual of the implicit velocity solve (the velocity
   /// change d over a step; solver/model/implicit_step.hpp); looser than the pressure's solver.tol

@@ -17,6 +17,7 @@
 #include "kernels/viscous.hpp"
 #include "solver/model/boundary.hpp"
 #include "solver/model/component_kind.hpp"
+#include "solver/model/picard_anderson.hpp"
 #include "solver/components/contact_component.hpp"
 #include "solver/components/control_volume_forces.hpp"
 #include "solver/components/rigid_bodies.hpp"

@@ -22,6 +22,7 @@
 
 namespace refmap {
 
+class AndersonMixer;
 class CheckpointWriter;
 class CheckpointReader;
 class ControlVolumeForces;
@@ -297,6 +298,9 @@ class Simulation {
   double picard_change_ = 0.0;
   long picard_cycles_ = 0;
   long picard_velocity_cycles_ = 0;
+  /// time.solid_picard_anderson: the mixing of the passes and its residual fields
+  std::unique_ptr<AndersonMixer> picard_mix_;
+  Field picard_ru_, picard_rv_;
   /// time.solid_picard_force = "trapezoidal": the passes kick with (F^n + F^{n+1,(k)}) / 2
   /// through verlet_kick and the fields below (fpx_, fpy_, verlet_steps_ are then state)
   bool picard_trapezoid_ = false;

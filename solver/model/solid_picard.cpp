@@ -60,6 +60,7 @@
 #include "solver/io/checkpoint_io.hpp"
 #include "solver/model/boundary.hpp"
 #include "solver/model/implicit_step.hpp"
+#include "solver/model/picard_anderson.hpp"
 #include "solver/model/simulation.hpp"
 #include "solver/model/solid.hpp"
 
@@ -104,19 +105,50 @@ double Simulation::step_picard(double dt) {
     if (implicit_) implicit_->set_tol(last ? v_tol : std::max(v_tol, loose));
   };
   tolerances(cfg_.solid_picard == 0);
+  // time.solid_picard_anderson: the first pass's input is u^n (xi moved by it alone)
+  const bool anderson = cfg_.solid_picard_anderson > 0;
+  if (anderson) {
+    if (!picard_mix_) picard_mix_ = std::make_unique<AndersonMixer>(cfg_.solid_picard_anderson);
+    picard_mix_->reset();
+    uk_ = u_;
+    vk_ = v_;
+    if (picard_ru_.nx() == 0)
+      for (Field* f : {&picard_ru_, &picard_rv_}) f->resize(nx, ny, ng);
+  }
   step_once(dt);
   long vcycles = implicit_ ? implicit_->last_iterations() : 0;
   long cycles = last_stats_.iterations + vcycles;
   picard_change_ = 0.0;
   const double th = cfg_.solid_picard_theta;
   for (int it = 1; it <= cfg_.solid_picard; ++it) {
-    uk_ = u_;
-    vk_ = v_;
-    ufk_ = uf_;
-    vfk_ = vf_;
-    if (defect) {
-      dprev_u_ = implicit_->last_change(0);
-      dprev_v_ = implicit_->last_change(1);
+    if (anderson) {
+      // the next input from the outputs and residuals of the passes so far (picard_anderson.hpp)
+      const double* pu = u_.raw();
+      const double* pv = v_.raw();
+      const double* ku = uk_.raw();
+      const double* kv = vk_.raw();
+      double* ru = picard_ru_.raw();
+      double* rv = picard_rv_.raw();
+      for (std::size_t n = 0; n < u_.raw_size(); ++n) {
+        ru[n] = pu[n] - ku[n];
+        rv[n] = pv[n] - kv[n];
+      }
+      std::vector<const Field*> g{&u_, &v_, &uf_, &vf_};
+      std::vector<Field*> x{&uk_, &vk_, &ufk_, &vfk_};
+      if (defect) {
+        g.insert(g.end(), {&implicit_->last_change(0), &implicit_->last_change(1)});
+        x.insert(x.end(), {&dprev_u_, &dprev_v_});
+      }
+      picard_mix_->next(g, {&picard_ru_, &picard_rv_}, x);
+    } else {
+      uk_ = u_;
+      vk_ = v_;
+      ufk_ = uf_;
+      vfk_ = vf_;
+      if (defect) {
+        dprev_u_ = implicit_->last_change(0);
+        dprev_v_ = implicit_->last_change(1);
+      }
     }
     CheckpointReader r = CheckpointReader::from_payload(snap.payload(), "the step's snapshot");
     state_.load(r);

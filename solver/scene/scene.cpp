@@ -266,6 +266,9 @@ void parse_time(const Ctx& ctx, const Table& top, Config& cfg) {
             "set it false for plain repetitions of the step");
   cfg.solid_picard_force = t.option<PicardForce>("solid_picard_force");
   cfg.solid_picard_tol = t.number("solid_picard_tol");
+  cfg.solid_picard_anderson = int(t.integer("solid_picard_anderson"));
+  t.require(cfg.solid_picard_anderson == 0 || cfg.solid_picard >= 2, "solid_picard_anderson",
+            "needs solid_picard_iterations >= 2 (the first mixed pass is the second)");
   t.require(cfg.solid_picard_force == PicardForce::New ||
                 (cfg.solid_picard > 0 && cfg.solid_time == SolidStressTime::SemiImplicit),
             "solid_picard_force", "\"trapezoidal\" needs solid_picard_iterations > 0 and solid_stress = "

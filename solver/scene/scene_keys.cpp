@@ -182,6 +182,10 @@ std::vector<KeyDef> build_keys() {
           "relative tolerance of the pressure and velocity solves in every pass of solid_picard_iterations but the "
           "last, never tighter than solver.tol and implicit_tol (0: those in every pass); the earlier passes only "
           "give the velocity that moves xi in the next, the last solves to the full tolerances (docs/implicit.md)"),
+      integer("time", "solid_picard_anderson", d.solid_picard_anderson, in(0, false, 10, false),
+              "history depth m of an Anderson acceleration of the passes of solid_picard_iterations: each pass "
+              "from the combination of the last m + 1 passes' results that minimises their residual (0: none, "
+              "each pass from the last one's result; docs/implicit.md)"),
       integer("time", "solid_rate_sweeps", d.solid_rate_sweeps, in(1, false, 100, false),
               "outer block Gauss-Seidel sweeps (u, then v) of solid_stress = \"upper_convected\": the first "
               "without its cross terms (b_xy and the other component's derivatives: lagged), each further "
