@@ -12,7 +12,9 @@ elastic) over its start, its growth over the second half, the largest area drift
 failure (a fold or a blow-up: the health check's message), ke_dev_explicit (the largest
 |KE(t) - KE_ref(t)| over the run, in % of KE(0), KE_ref interpolated in t), ke_dev_verlet (the
 same against a second reference, the default explicit coupling, velocity Verlet, at the default
-P = 0.5: row explicit_verlet, whose ke_dev_explicit is the gap of the two references), the last
+P = 0.5: row explicit_verlet, whose ke_dev_explicit is the gap of the two references),
+e_dev_explicit (the same of the total energy KE + elastic, which the exchange between the two
+leaves alone, so a phase error of the oscillation does not enter it), the last
 iteration's relative velocity change (picard_change: median and largest over the steps),
 passes per step, multigrid cycles per step of all passes (pressure and velocity) and the
 same over the reference run's pressure cycles per step ("cost": pressure-solve units), and the
@@ -112,13 +114,14 @@ def run(binary, raw, tag, sets):
                    velocity_cycles_per_step=statistics.mean(col["implicit_iterations"][1:]))
     else:
         res.update(cycles_per_step=res["poisson_per_step"])
-    return res, (col["time"], col["kinetic_energy"])
+    return res, (col["time"], col["kinetic_energy"], col["total_energy"])
 
 
-def ke_dev(series, ref):
-    """Largest |KE(t) - KE_ref(t)| over the run's rows, in % of KE(0) (KE_ref linear in t)."""
-    t, ke = series
-    tr, kr = ref
+def ke_dev(series, ref, k=1):
+    """Largest |KE(t) - KE_ref(t)| over the run's rows, in % of KE(0) (KE_ref linear in t);
+    k = 2: the same of the total energy E = KE + elastic (e_dev_explicit)."""
+    t, ke = series[0], series[k]
+    tr, kr = ref[0], ref[k]
     dev = 0.0
     for ti, ki in zip(t, ke):
         j = min(max(bisect.bisect_left(tr, ti), 1), len(tr) - 1)
@@ -143,7 +146,7 @@ def main():
     a = ap.parse_args()
     path = os.path.join(a.out, "implicit_picard.csv")
     cols = ["method", "grid", "mu_s_over_rho_s", "P", "rc", "steps", "t_end", "e_max", "late_growth", "e_end",
-            "area_drift", "ke_dev_explicit", "ke_dev_verlet", "change_median", "change_max", "passes", "cycles_per_step",
+            "area_drift", "ke_dev_explicit", "e_dev_explicit", "ke_dev_verlet", "change_median", "change_max", "passes", "cycles_per_step",
             "cost_pressure_units", "velocity_cost_pressure_units", "wall_per_step", "failure"]
     old = disc_study.read_rows(path)  # rows of other (method, grid, mu, P) are kept
     n = a.grid
@@ -172,6 +175,7 @@ def main():
                            cost_pressure_units=r.get("poisson_per_step", float("nan")) / refs[mu][1], **r)
                 if vseries and series:
                     row["ke_dev_explicit"] = ke_dev(vseries, series)
+                    row["e_dev_explicit"] = ke_dev(vseries, series, k=2)
                 print(", ".join(f"{k}={row.get(k, '')}" for k in cols), flush=True)
                 new.append(row)
             for m in ms:
@@ -185,6 +189,7 @@ def main():
                     row = dict(method=m, grid=n, mu_s_over_rho_s=f"{mu:g}", P=f"{p:g}", passes=passes, **r)
                     if series and refs[mu][0]:
                         row["ke_dev_explicit"] = ke_dev(series, refs[mu][0])
+                        row["e_dev_explicit"] = ke_dev(series, refs[mu][0], k=2)
                     if series and refs[mu][2]:
                         row["ke_dev_verlet"] = ke_dev(series, refs[mu][2])
                     if "cycles_per_step" in r:
