@@ -53,7 +53,8 @@
 // Each pass costs a whole step (xi advection and extrapolation, a velocity and a pressure
 // solve): picard_cycles() counts the multigrid cycles of all of them, picard_velocity_cycles()
 // those of the velocity solves. Every pass but the last solves only to time.solid_picard_tol
-// (the measurements that set its default: results/implicit.md, "The implicit step in xi").
+// (the measurements that set its default: results/implicit.md, "The passes before the last"),
+// and time.solid_picard_anderson mixes the passes (picard_anderson.hpp).
 #include <algorithm>
 #include <cmath>
 
