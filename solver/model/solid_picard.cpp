@@ -165,8 +165,9 @@ double Simulation::step_picard(double dt) {
     step_once(dt);
     xi_transport_ = false;
     defect_ = false;
-    vcycles += implicit_ ? implicit_->last_iterations() : 0;
-    cycles += last_stats_.iterations + (implicit_ ? implicit_->last_iterations() : 0);
+    const long v = implicit_ ? implicit_->last_iterations() : 0;
+    vcycles += v;
+    cycles += last_stats_.iterations + v;
     double dmax = 0.0, umax = 0.0;
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
