@@ -58,6 +58,10 @@ class Simulation {
   const Field& p() const { return p_; }
   const Field& rho() const { return rho_; }
   const Field& uf() const { return uf_; }  ///< x-face normal velocity, (nx+1) x ny
+  /// time.elastic_coupling = "verlet": the midpoint face velocities that carried xi in the
+  /// last step (empty fields with the other coupling)
+  const Field& drift_uf() const { return wf_; }
+  const Field& drift_vf() const { return wv_; }
   const Field& vf() const { return vf_; }  ///< y-face normal velocity, nx x (ny+1)
   Field& u_mut() { ke_step_ = -1; return u_; }
   Field& v_mut() { ke_step_ = -1; return v_; }
@@ -238,6 +242,9 @@ class Simulation {
   /// time.elastic_coupling = "verlet", before the solids move: the midpoint face velocities
   /// wf_, wv_ of the drift (kernels/verlet.hpp), then the current faces kept for the next step.
   void drift_velocities(double dt);
+  /// time.verlet_project_drift: wf_, wv_ = w0 + P c, the drift's stress correction c projected
+  /// with the pressure operator (cv, cf: the coefficients of verlet_drift_faces).
+  void project_drift(double cv, double cf);
   void blend_material_fields();
   /// Force of the solid stresses (conservative or not) into fx_, fy_ (which it overwrites).
   void solid_force();
@@ -312,6 +319,7 @@ class Simulation {
   Field dfx_, dfy_;        ///< F^n - F^{n-1} (state)
   Field ufp_, vfp_;        ///< the face velocities of the last step's start, u_f^{n-1} (state)
   Field wf_, wv_;          ///< the drift's midpoint face velocities (scratch)
+  Field cxf_, cyf_, phic_; ///< time.verlet_project_drift: the correction and its potential (scratch)
   Field vpx_, vpy_;        ///< the explicit viscous force before the stress is added (scratch)
   double dt_prev_ = 0.0;   ///< the last step's dt (state)
   long verlet_steps_ = 0;  ///< steps taken with this coupling: 0 = no history yet (state)

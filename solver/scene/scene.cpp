@@ -242,11 +242,14 @@ void parse_time(const Ctx& ctx, const Table& top, Config& cfg) {
   // implicit solid stress here, xi moved by cell velocities in check_elastic_coupling);
   // given explicitly it is refused there
   cfg.elastic_coupling = t.option<ElasticCoupling>("elastic_coupling");
+  cfg.verlet_project_drift = t.boolean("verlet_project_drift");
   if (!t.has("elastic_coupling") && cfg.solid_time != SolidStressTime::Explicit)
     cfg.elastic_coupling = ElasticCoupling::SymplecticEuler;
   t.require(cfg.elastic_coupling == ElasticCoupling::SymplecticEuler || cfg.solid_time == SolidStressTime::Explicit,
             "elastic_coupling",
             "\"verlet\" needs solid_stress = \"explicit\" (the implicit solid terms are first order anyway)");
+  t.require(!cfg.verlet_project_drift || cfg.elastic_coupling == ElasticCoupling::Verlet, "verlet_project_drift",
+            "needs elastic_coupling = \"verlet\" (it projects the Verlet drift's correction)");
   cfg.solid_implicit_k = t.number("solid_implicit_k");
   cfg.solid_implicit_reach = t.number("solid_implicit_reach");
   cfg.solid_implicit_cfl = t.number("solid_implicit_cfl");
