@@ -12,12 +12,17 @@
 #include "solver/model/component_kind.hpp"
 #include "solver/components/contact_component.hpp"
 #include "solver/components/control_volume_forces.hpp"
+#include "solver/components/implicit_velocity_step.hpp"
 #include "solver/components/markers.hpp"
 #include "solver/components/rigid_bodies.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/scene/scene_keys.hpp"
 #include "solver/model/simulation.hpp"
 #include "solver/components/tracers.hpp"
+#include "solver/io/checkpoint_io.hpp"
+#include "solver/model/diagnostics.hpp"
+#include "solver/model/implicit_step.hpp"
+#include "tests/test_helpers.hpp"
 #include "tests/fixtures/scene_text.hpp"
 
 namespace refmap {
@@ -184,6 +189,81 @@ TEST(Components, HeldCellsAreCalledAtTheSubstepsPoints) {
                                        P::Predicted, P::PressureUpdated, P::FaceAccelerations, P::End};
     EXPECT_EQ(p->points, expected) << "implicit = " << implicit;
   }
+}
+
+// The implicit velocity step is a component (solver/components/implicit_velocity_step.hpp)
+// that takes the velocity step of eq. (5.2): attached after contact, its records where the
+// flow's end (after the solids', before the Verlet coupling's and contact's: the order of the
+// checkpoints written before it was a component), its column right after the flow's last
+// built-in one (and the contact's), before the Picard columns; a checkpoint carries its warm
+// start, so a resumed run's solves take the same cycles and the state continues bit for
+// bit. An explicit run has none of it.
+TEST(Components, ImplicitVelocityStepKeepsItsRecordsColumnAndWarmStart) {
+  const std::vector<std::string> implicit_tags = {
+      "implicit.du",    "implicit.dv",         "implicit.du2",      "implicit.dv2",
+      "implicit.dt1",   "implicit.dt2",        "implicit.steps",    "implicit.iterations",
+      "implicit.residual", "implicit.total_iterations", "implicit.sweep_change"};
+  // the implicit viscous step with the explicit stress: the Verlet coupling's records follow
+  const Config c = load_scene(testing::scene_path("disc_tgv.toml"), {"time.viscous=\"implicit\"", "grid.nx=32", "grid.ny=32"});
+  Simulation sim(c);
+  ASSERT_EQ(sim.components().size(), 2u);
+  EXPECT_NE(dynamic_cast<const ContactComponent*>(sim.components()[0].get()), nullptr);
+  const auto* step = dynamic_cast<const ImplicitVelocityStep*>(sim.components()[1].get());
+  ASSERT_NE(step, nullptr);
+  EXPECT_TRUE(step->takes_velocity_step());
+  EXPECT_EQ(sim.implicit_velocity(), &step->solver());
+
+  // the records: contiguous, in the solver's order, after the last solid's, before the rest
+  const std::vector<std::string> tags = sim.state().tags();
+  const auto at = [&](const std::string& t) { return std::find(tags.begin(), tags.end(), t) - tags.begin(); };
+  const std::ptrdiff_t first = at("implicit.du");
+  ASSERT_LT(first, std::ptrdiff_t(tags.size()));
+  ASSERT_LT(first + std::ptrdiff_t(implicit_tags.size()), std::ptrdiff_t(tags.size()));  // the Verlet records follow
+  EXPECT_EQ(std::vector<std::string>(tags.begin() + first, tags.begin() + first + std::ptrdiff_t(implicit_tags.size())),
+            implicit_tags);
+  EXPECT_EQ(tags[std::size_t(first - 1)], "solid0");
+  EXPECT_EQ(tags[std::size_t(first) + implicit_tags.size()], "sim.verlet.fpx");
+  EXPECT_GT(at("contact"), first);
+
+  // the column: after total_energy and the contact's, before the Picard columns
+  Simulation picard(load_scene(testing::scene_path("disc_tgv.toml"), {"time.solid_stress=\"semi_implicit\"", "grid.nx=32",
+                                                                      "grid.ny=32", "time.solid_picard_iterations=1"}));
+  const std::vector<std::string> cols = diagnostic_columns(picard);
+  const auto col = [&](const char* n) { return std::find(cols.begin(), cols.end(), n) - cols.begin(); };
+  ASSERT_LT(col("implicit_iterations"), std::ptrdiff_t(cols.size()));
+  EXPECT_EQ(col("contact_energy"), col("total_energy") + 1);
+  EXPECT_EQ(col("implicit_iterations"), col("contact_energy") + 1);
+  EXPECT_EQ(col("picard_change"), col("implicit_iterations") + 1);
+
+  // a checkpoint after 3 steps (the warm start extrapolates the last two changes), resumed
+  for (int k = 0; k < 3; ++k) sim.step();
+  CheckpointWriter w;
+  sim.save_state(w);
+  Simulation resumed(c);
+  CheckpointReader r = CheckpointReader::from_payload(w.payload(), "the test's checkpoint");
+  resumed.load_state(r);
+  EXPECT_EQ(resumed.implicit_velocity()->total_iterations(), sim.implicit_velocity()->total_iterations());
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(sim.step(), resumed.step());
+    EXPECT_EQ(resumed.implicit_velocity()->last_iterations(), sim.implicit_velocity()->last_iterations()) << k;
+    EXPECT_EQ(diagnostic_values(resumed, 0.0, 0.0), diagnostic_values(sim, 0.0, 0.0)) << k;
+  }
+  CheckpointWriter a, b;
+  sim.save_state(a);
+  resumed.save_state(b);
+  EXPECT_TRUE(a.payload() == b.payload()) << "the state after the resumed steps differs";
+
+  // without solids: right after the flow's last column; explicit: nothing of it
+  const Config tg = load_scene(testing::scene_path("taylor_green.toml"), {"time.viscous=\"implicit\"", "grid.nx=16", "grid.ny=16"});
+  Simulation fluid(tg);
+  const std::vector<std::string> fc = diagnostic_columns(fluid);
+  ASSERT_GE(fc.size(), 2u);
+  EXPECT_EQ(fc.back(), "implicit_iterations");
+  EXPECT_EQ(fc[fc.size() - 2], "wall_time");
+  Simulation expl(load_scene(testing::scene_path("taylor_green.toml"), {"grid.nx=16", "grid.ny=16"}));
+  EXPECT_EQ(expl.implicit_velocity(), nullptr);
+  EXPECT_EQ(expl.component<ImplicitVelocityStep>(), nullptr);
+  for (const std::string& t : expl.state().tags()) EXPECT_NE(t.rfind("implicit.", 0), 0u) << t;
 }
 
 }  // namespace

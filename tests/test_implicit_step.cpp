@@ -13,6 +13,7 @@
 #include "solver/model/probes.hpp"
 #include "solver/app/run.hpp"
 #include "solver/scene/scene.hpp"
+#include "solver/model/implicit_step.hpp"
 #include "solver/model/simulation.hpp"
 #include "tests/fixtures/scene_text.hpp"
 #include "tests/fixtures/couette_layer.hpp"

@@ -16,8 +16,9 @@
 //    "bodies"), aiming at the predictor's G_f;
 //  * registers the bodies' state (record "bodies");
 //  * writes angle and omega after torque in solids.csv (nan on a soft solid's rows).
-// Still in the Simulation: the held cells of forcing_hold (the RK-4 stages' rates, the
-// explicit stress step, the implicit solve: Simulation::hold_rates, begin_substeps) and the
+// Still in the Simulation: the calls of the held cells of forcing_hold (the RK-4 stages' and
+// the explicit stress step's rates: Simulation::call_rates, begin_substeps; the implicit
+// solve holds Simulation::held_cells, solver/components/implicit_velocity_step.hpp) and the
 // solids.csv columns fx, fy, torque, shared with the control-volume forces
 // (solver/model/diagnostics.cpp); docs/components.md.
 #include <memory>

@@ -13,7 +13,10 @@
 //    writes them at every VTK frame, keeps them across a checkpoint and names none of
 //    them),
 //  * is told when the run ends (finish: close what is still open, write the files of the
-//    run's end).
+//    run's end),
+//  * may take over the velocity step of eq. (5.2) (takes_velocity_step: the implicit
+//    velocity step, solver/components/implicit_velocity_step.hpp) in place of the
+//    Simulation's explicit forward-Euler update, with a limit of its own on the step.
 // A scene's components are made by their kinds (solver/model/component_kind.hpp: keys, parser,
 // factory), so adding one takes its own files and one registration - or add_component()
 // from outside, as the tests do.
@@ -49,9 +52,11 @@ enum class StepPoint {
   /// Simulation::rate_x_mut(), rate_y_mut(), rate_weight(). Only when a component holds cells.
   /// Not timed on its own (booked in "advection" and "viscous").
   Rates,
-  /// After the implicit velocity solve with held cells (solver/model/implicit_step.hpp):
-  /// ImplicitVelocity::held_rate() holds, per held cell, the rate the solve kept from it. Only
-  /// when a component holds cells. Not timed on its own ("implicit velocity").
+  /// After the implicit velocity solve with held cells (Component::velocity_step of the
+  /// implicit velocity step, solver/components/implicit_velocity_step.hpp):
+  /// ImplicitVelocity::held_rate() (solver/model/implicit_step.hpp) holds, per held cell, the
+  /// rate the solve kept from it. Only when a component holds cells. Not timed on its own
+  /// ("implicit velocity").
   HeldSolved,
   /// After step 4, eq. (5.1): u(), v() hold u*, rho() rho^{n+1}, the solids xi^{n+1}.
   Advected,
@@ -150,6 +155,23 @@ class Component {
   /// Its cell fields (name, nx x ny field) written into every VTK frame after the built-in
   /// ones (solver/app/run.cpp).
   virtual std::vector<std::pair<std::string, const Field*>> frame_fields() const { return {}; }
+  /// Whether it takes the velocity step of eq. (5.2), u** from u* and the step's force
+  /// (Simulation::step_force_x, _y: viscous plus solid stress), in place of the Simulation's
+  /// explicit forward-Euler update (the implicit velocity step,
+  /// solver/components/implicit_velocity_step.hpp). At most one component does; asked once,
+  /// when the Simulation is built (fixed for the run, like held_cells). The step is a
+  /// replacement, not an addition, which is why it is not a StepPoint: no other component
+  /// sees it, and the Simulation calls the held cells' StepPoint::HeldSolved after it.
+  virtual bool takes_velocity_step() const { return false; }
+  /// That step (only if takes_velocity_step): u(), v() hold u* with the walls of t + dt,
+  /// rho() rho^{n+1}; leaves u** in u_mut(), v_mut(), holding Simulation::held_cells()
+  /// fixed. Timed under name().
+  virtual void velocity_step(Simulation&, double /*dt*/) {}
+  /// Its limit on the next step (only if takes_velocity_step), for the current state: one of
+  /// the flow's own limits (Simulation::flow_limit, which the contact's max_dt reads), not a
+  /// component's max_dt, since it stands in for the explicit step's limits it lifts
+  /// (infinity: none).
+  virtual double velocity_step_dt(const Simulation&) const { return std::numeric_limits<double>::infinity(); }
   /// Its own output files (ComponentFile), in the order of their checkpoint records.
   virtual std::vector<ComponentFile> files() const { return {}; }
   /// At the end of a run (solver/app/run.cpp: also after a failure or a signal), after the

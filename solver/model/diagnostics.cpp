@@ -73,12 +73,8 @@ const SolidColumn kForceColumns[] = {
 // (solver/components/rigid_bodies.hpp), after "torque"
 // clang-format on
 
-/// Written last, only when the implicit velocity step is on (time.viscous = "implicit" or
-/// time.solid_stress = "semi_implicit"; solver/model/implicit_step.hpp), so the other scenes'
-/// files keep their columns: the multigrid cycles of its last solve (u and v summed).
-const Column kImplicitColumns[] = {
-    {"implicit_iterations", false, [](const RowState& r) { return double(r.sim.implicit_velocity()->last_iterations()); }},
-};
+// (then, with the implicit velocity step, its column implicit_iterations: the component's,
+// placed right after the columns above, solver/components/implicit_velocity_step.hpp)
 
 /// Written after those, only with time.solid_picard_iterations > 0 (solver/model/solid_picard.cpp):
 /// the last iteration's relative velocity change, the multigrid cycles of all the step's passes
@@ -122,8 +118,6 @@ std::vector<const Column*> global_columns(const Simulation& sim) {
   std::vector<const Column*> cols;
   for (const Column& col : kColumns)
     if (!col.needs_solids || solids) cols.push_back(&col);
-  if (sim.implicit_velocity())
-    for (const Column& col : kImplicitColumns) cols.push_back(&col);
   if (sim.config().solid_picard > 0)
     for (const Column& col : kPicardColumns) cols.push_back(&col);
   return cols;

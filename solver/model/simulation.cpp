@@ -20,6 +20,7 @@
 #include "solver/model/picard_anderson.hpp"
 #include "solver/components/contact_component.hpp"
 #include "solver/components/control_volume_forces.hpp"
+#include "solver/components/implicit_velocity_step.hpp"
 #include "solver/components/rigid_bodies.hpp"
 #include "solver/io/expression.hpp"
 #include "solver/model/time_step_limits.hpp"
@@ -57,12 +58,13 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
   if (increment_)
     for (Field* f : {&gcx_n_, &gcy_n_, &vnx_, &vny_, &srcx_, &srcy_}) f->resize(nx, ny, ng);
   poisson_ = make_poisson_solver(cfg_.poisson);
-  if (cfg_.viscous_time == ViscousTime::Implicit || cfg_.solid_time != SolidStressTime::Explicit) {
-    implicit_ = std::make_unique<ImplicitVelocity>(cfg_);
-    mimp_.resize(nx, ny, ng);
+  if (ImplicitVelocityStep::needed(cfg_)) {
+    // made before the initial state so that register_state() can put its records where the
+    // flow's end, as before it was a component (add_components attaches it after the bodies)
+    auto c = std::make_unique<ImplicitVelocityStep>(cfg_);
+    implicit_ = c.get();
+    components_.push_back(std::move(c));
   }
-  if (cfg_.solid_time == SolidStressTime::UpperConvected)
-    for (Field* f : {&qxx_, &qxy_, &qyy_}) f->resize(nx, ny, ng);
   verlet_ = elastic && verlet_coupling(cfg_);
   if (verlet_) {
     for (Field* f : {&fpx_, &fpy_, &dfx_, &dfy_, &vpx_, &vpy_}) f->resize(nx, ny, ng);
@@ -81,12 +83,18 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
   initialise();
   register_state();
   add_components();
-  // the component that holds cells through the substeps, if any (Component::held_cells)
-  for (const auto& c : components_)
+  // the component that holds cells through the substeps, if any (Component::held_cells),
+  // and the one that takes the velocity step (Component::takes_velocity_step)
+  for (const auto& c : components_) {
     if (const auto* h = c->held_cells()) {
       if (held_) throw std::invalid_argument("two components hold cells through the substeps");
       held_ = h;
     }
+    if (c->takes_velocity_step()) {
+      if (velocity_step_) throw std::invalid_argument("two components take the velocity step");
+      velocity_step_ = c.get();
+    }
+  }
   if (held_ && cfg_.solid_time == SolidStressTime::UpperConvected)
     throw std::invalid_argument("solid.forcing_hold is not offered with time.solid_stress = \"upper_convected\"");
 }
@@ -105,7 +113,9 @@ void Simulation::register_state() {
   state_.add_count("sim.poisson_iterations", last_stats_.iterations);
   state_.add_value("sim.poisson_residual", last_stats_.rel_residual);
   register_solids_state();
-  if (implicit_) implicit_->register_state(state_);  // its initial guesses (warm start)
+  // the implicit velocity step's initial guesses (warm start) and solve statistics: its
+  // component's records, here (not when attached) so that checkpoints keep their order
+  if (implicit_) implicit_->register_state(state_);
   if (verlet_) {  // the last step's force and face velocities (time.elastic_coupling = "verlet")
     for (const auto& [name, f] : {std::pair<const char*, Field*>{"fpx", &fpx_}, {"fpy", &fpy_}, {"dfx", &dfx_},
                                   {"dfy", &dfy_}, {"ufp", &ufp_}, {"vfp", &vfp_}})
@@ -121,7 +131,8 @@ void Simulation::register_state() {
 }
 
 void Simulation::add_components() {
-  // the components made before the initial state (the rigid bodies), attached after contact
+  // the components made before the initial state (the rigid bodies, then the implicit
+  // velocity step), attached after contact
   std::vector<std::unique_ptr<Component>> early = std::move(components_);
   components_.clear();
   // contact first whenever there are solids: its hooks come first at each step point (the
@@ -129,7 +140,10 @@ void Simulation::add_components() {
   // force is in G_f before the rigid bodies' cut faces) and its time-step limit reads the
   // flow's limit alone (flow_limit)
   if (!solids_.empty()) add_component(std::make_unique<ContactComponent>(*this));
-  for (auto& c : early) add_component(std::move(c));
+  for (auto& c : early) {
+    if (c.get() == implicit_) components_.push_back(std::move(c));  // registered by register_state()
+    else add_component(std::move(c));
+  }
   // the scene's components, each made by its kind (solver/model/component_kind.hpp) in
   // registration order, which is the order of their hooks at one step point
   for (const auto& [kind, options] : cfg_.components)
@@ -175,6 +189,7 @@ void Simulation::set_stage_probe(std::function<void(Stage, double dt)> probe) {
 }
 
 const ControlVolumeForces* Simulation::control_volume_forces() const { return component<ControlVolumeForces>(); }
+const ImplicitVelocity* Simulation::implicit_velocity() const { return implicit_ ? &implicit_->solver() : nullptr; }
 const BodyLoad* Simulation::solid_load(int k) const {
   for (auto c = components_.rbegin(); c != components_.rend(); ++c) {
     const BodyLoad* load = nullptr;
@@ -512,8 +527,9 @@ double Simulation::stable_dt() const {
     dt = std::min(dt, viscous_dt_limit(cfg_.visc_safety, g.dx, nu_max));
   if (cfg_.solid_time == SolidStressTime::Explicit)
     for (const auto& s : solids_) dt = std::min(dt, s->min_dt());
-  else if (cfg_.solid_implicit_cfl > 0.0)  // the implicit stress's own cap (docs/implicit.md)
-    for (const auto& s : solids_) dt = std::min(dt, s->min_dt(cfg_.solid_implicit_cfl));
+  // the velocity step's own limit in their place (the implicit stress's cap
+  // time.solid_implicit_cfl: solver/components/implicit_velocity_step.hpp), part of the flow's
+  if (velocity_step_) dt = std::min(dt, velocity_step_->velocity_step_dt(*this));
   // the components' limits (the contact spring's: solver/components/contact_component.hpp)
   flow_limit_ = {umax, dt};
   for (const auto& c : components_) dt = std::min(dt, c->max_dt(*this));
@@ -648,7 +664,7 @@ void Simulation::apply_viscous_and_solid_stress(double dt) {
   if (viscous || elastic) {
     ScopedPhase ph(timers_, "viscous");
     apply_velocity_bc(u_, v_, t_ + dt);
-    if (viscous && increment_ && !implicit_) {
+    if (viscous && increment_ && !velocity_step_) {
       fx_.fill(0.0);  // time.splitting = "increment": the advection carried it (of u^n)
       fy_.fill(0.0);
     } else if (viscous) {
@@ -679,18 +695,16 @@ void Simulation::apply_viscous_and_solid_stress(double dt) {
       ++verlet_steps_;
     }
   }
-  if ((viscous || elastic) && implicit_) {
-    ScopedPhase ph(timers_, "implicit velocity");
-    implicit_viscosity(dt);
-    if (cfg_.solid_time == SolidStressTime::UpperConvected) {
-      rate_coefficients(dt);
-      implicit_->apply_rate(u_, v_, fx_, fy_, rho_, mimp_, qxx_, qxy_, qyy_, dt);
-    } else {
-      implicit_->set_held(held_);
-      if (defect_) picard_defect_force(dt);  // solver/model/solid_picard.cpp
-      implicit_->apply(u_, v_, fx_, fy_, rho_, mimp_, dt);
-      if (held_) call_components(StepPoint::HeldSolved, dt, false);  // the held cells' rates
-    }
+  if ((viscous || elastic) && velocity_step_) {
+    // a component's step in place of forward Euler (the implicit velocity step,
+    // solver/components/implicit_velocity_step.hpp), timed under its name ("implicit velocity")
+    ScopedPhase ph(timers_, velocity_step_->name());
+    // time.solid_picard_defect (semi_implicit only): fx_, fy_ -= A(eta) of the last pass's
+    // change (solver/model/solid_picard.cpp); it reads none of what the step sets up
+    if (defect_) picard_defect_force(dt);
+    velocity_step_->velocity_step(*this, dt);
+    // the held cells' rates (held cells are refused with the upper-convected stress)
+    if (held_) call_components(StepPoint::HeldSolved, dt, false);
   } else if (viscous || elastic) {
     if (held_) call_rates(fx_.view(), fy_.view(), dt, dt);
     apply_force(u_.view(), v_.view(), fx_.view(), fy_.view(), rho_.view(), dt, nx, ny);
@@ -742,36 +756,6 @@ void Simulation::call_rates(View kx, View ky, double weight, double dt) {
   rate_y_ = ky;
   rate_w_ = weight;
   call_components(StepPoint::Rates, dt, false);
-}
-
-void Simulation::implicit_viscosity(double dt) {
-  if (cfg_.viscous_time == ViscousTime::Implicit) mimp_ = mu_;
-  else mimp_.fill(0.0);
-  if (cfg_.solid_time == SolidStressTime::SemiImplicit)
-    for (const auto& s : solids_)  // blended like the stress, eq. (3.6), reaching reach cells further out
-      if (s->spec().mu_s > 0.0)
-        s->add_blend(mimp_, cfg_.solid_implicit_k * s->wave_modulus() * dt, 0.0,
-                     cfg_.solid_implicit_reach * cfg_.grid.dx);
-  fill_scalar_ghosts(mimp_, cfg_.bc);
-}
-
-void Simulation::rate_coefficients(double dt) {
-  // q = 2 mu_s dt (1 - H) b of every elastic solid (the upper-convected step's tensor,
-  // kernels/helmholtz.hpp), b from the stress just computed from the advected xi
-  for (Field* f : {&qxx_, &qxy_, &qyy_}) f->fill(0.0);
-  for (const auto& s : solids_) {
-    if (s->spec().mu_s <= 0.0) continue;
-    // per piece of the window that does not cross a periodic side (solver/model/periodic_window.hpp)
-    s->for_each_piece([&](const WindowPiece& p) {
-      auto at = [&](const Field& f) { return shifted_view(f.cview(), p.li, p.lj); };
-      with_constitutive_model(s->spec(), [&](const auto& model) {
-        blend_rate_coefficients(model, at(s->stress_xx()), at(s->stress_xy()), at(s->stress_yy()), at(s->phi()),
-                                p.ni, p.nj, s->transition(), cfg_.solid_implicit_reach * cfg_.grid.dx, dt,
-                                qxx_.view(), qxy_.view(), qyy_.view(), p.gi, p.gj);
-      });
-    });
-  }
-  for (Field* f : {&qxx_, &qxy_, &qyy_}) fill_scalar_ghosts(*f, cfg_.bc);
 }
 
 void Simulation::setup_poisson() {

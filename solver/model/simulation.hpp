@@ -10,7 +10,6 @@
 
 #include "solver/model/component.hpp"
 #include "solver/model/config.hpp"
-#include "solver/model/implicit_step.hpp"
 #include "kernels/boundary_kind.hpp"
 #include "core/field.hpp"
 #include "core/grid.hpp"
@@ -27,6 +26,8 @@ class CheckpointWriter;
 class CheckpointReader;
 class ControlVolumeForces;
 class Contact;
+class ImplicitVelocity;
+class ImplicitVelocityStep;
 
 class Simulation {
  public:
@@ -37,12 +38,14 @@ class Simulation {
   /// Returns the dt taken.
   double step(double dt = 0.0);
 
-  /// The stability-limited time step of section 4 (advective, viscous, solid shear wave),
-  /// then every component's max_dt.
+  /// The stability-limited time step of section 4 (advective, viscous, solid shear wave, or
+  /// the limit of the component that takes the velocity step: velocity_step_dt), then every
+  /// component's max_dt.
   double stable_dt() const;
   /// The flow's own part of the last stable_dt(): its fastest speed (|u| + |v|)max (with
-  /// moving walls and inflow) and the step its limits allow before the components'
-  /// (the contact limit depends on both: solver/components/contact_component.hpp).
+  /// moving walls and inflow) and the step its limits allow before the components' max_dt
+  /// (the velocity step's limit included; the contact limit depends on both:
+  /// solver/components/contact_component.hpp).
   struct FlowLimit {
     double speed = 0.0, dt = 0.0;
   };
@@ -105,6 +108,12 @@ class Simulation {
   View rate_y_mut() { return rate_y_; }
   double rate_weight() const { return rate_w_; }
   const Sides& sides() const { return sides_; }
+  /// For the component that takes the velocity step (Component::velocity_step): the force
+  /// per volume of eq. (5.2) the step applies, viscous plus solid stress (cell fields).
+  const Field& step_force_x() const { return fx_; }
+  const Field& step_force_y() const { return fy_; }
+  /// The cells a component holds through the substeps (Component::held_cells; null: none).
+  const std::vector<std::array<int, 3>>* held_cells() const { return held_; }
 
   /// Cell field by probe/output name: u, v, p, density, speed, vorticity (ghosts filled).
   Field named_field(const std::string& name) const;
@@ -138,8 +147,9 @@ class Simulation {
   double kinetic_energy() const;
   double max_face_divergence() const;  ///< max over cells of |div u_f| (faces' net flux / dx)
   int last_poisson_iterations() const { return last_stats_.iterations; }
-  /// The implicit velocity solve (time.viscous / time.solid_stress; null when explicit).
-  const ImplicitVelocity* implicit_velocity() const { return implicit_.get(); }
+  /// The solver of the implicit velocity step's component (time.viscous / time.solid_stress,
+  /// solver/components/implicit_velocity_step.hpp; null when explicit).
+  const ImplicitVelocity* implicit_velocity() const;
   double last_poisson_residual() const { return last_stats_.rel_residual; }
   const PhaseTimers& timers() const { return timers_; }
   /// The run loop books its output phases here and resets it after the warm-up.
@@ -174,14 +184,17 @@ class Simulation {
 
  private:
   void initialise();
-  /// The flow's and the solids' records of state_ (the components add theirs).
+  /// The flow's and the solids' records of state_, then the implicit velocity step's (its
+  /// component registers them here, where they were before it was a component); the other
+  /// components add theirs when attached.
   void register_state();
   /// The solids' and the rigid bodies' records (solver/model/checkpoint.cpp).
   void register_solids_state();
   /// The components: contact with solids (solver/components/contact_component.hpp), the
-  /// rigid bodies (made before the initial state; solver/components/rigid_bodies.hpp), then
-  /// the scene's (Config::components, each made by its kind:
-  /// solver/model/component_kind.hpp), in the order of their hooks.
+  /// rigid bodies and the implicit velocity step (made before the initial state;
+  /// solver/components/rigid_bodies.hpp, implicit_velocity_step.hpp), then the scene's
+  /// (Config::components, each made by its kind: solver/model/component_kind.hpp), in the
+  /// order of their hooks.
   void add_components();
   /// Calls every component's hook at point p, timed under the component's name (timed =
   /// false: inside a phase that books the time).
@@ -210,7 +223,9 @@ class Simulation {
   void move_solids(double dt);
   /// Step 4, eq. (5.1), "advection": RK-4 advection of the momentum rho u.
   void advect_momentum(double dt);
-  /// Eq. (5.2), "viscous" and "solid stress": split forward-Euler step of the stresses.
+  /// Eq. (5.2), "viscous" and "solid stress": split forward-Euler step of the stresses, or
+  /// the step of the component that takes it (Component::velocity_step: the implicit
+  /// velocity step, "implicit velocity").
   void apply_viscous_and_solid_stress(double dt);
   /// "poisson setup": the face coefficients 1/rho of the new density.
   void setup_poisson();
@@ -248,13 +263,6 @@ class Simulation {
   void blend_material_fields();
   /// Force of the solid stresses (conservative or not) into fx_, fy_ (which it overwrites).
   void solid_force();
-  /// The implicit viscosity of solver/model/implicit_step.hpp into mimp_: mu (time.viscous =
-  /// "implicit") plus eta = k G dt (1 - H) of every elastic solid (time.solid_stress =
-  /// "semi_implicit").
-  void implicit_viscosity(double dt);
-  /// The upper-convected step's tensor q = 2 mu_s dt (1 - H) b (time.solid_stress =
-  /// "upper_convected") of every elastic solid into qxx_, qxy_, qyy_.
-  void rate_coefficients(double dt);
   void impose_prescribed_velocity(double t);
 
   Config cfg_;
@@ -293,9 +301,13 @@ class Simulation {
   Field srcx_, srcy_;                      // increment: the advection's momentum source vn - rho_old G_c^n
   std::unique_ptr<PoissonSolver> poisson_;
   SolveStats last_stats_;
-  std::unique_ptr<ImplicitVelocity> implicit_;  ///< implicit stress step (null: explicit)
-  Field mimp_;                                   ///< its implicit viscosity
-  Field qxx_, qxy_, qyy_;                         ///< its upper-convected tensor (kernels/helmholtz.hpp)
+  /// The component that takes the velocity step of eq. (5.2) (Component::takes_velocity_step;
+  /// null: the explicit forward Euler), and the implicit velocity step's component, typed, for
+  /// time.solid_picard_iterations (its tolerance, cycles and A(eta); solid_picard.cpp). Both
+  /// are owned by components_; null without time.viscous = "implicit" or an implicit
+  /// time.solid_stress.
+  Component* velocity_step_ = nullptr;
+  ImplicitVelocityStep* implicit_ = nullptr;
   // time.solid_picard_iterations (solver/model/solid_picard.cpp)
   bool xi_transport_ = false;            ///< move xi with (uf_adv_, vf_adv_, u_adv_, v_adv_), not uf_, u_
   Field uf_adv_, vf_adv_, u_adv_, v_adv_;

@@ -60,6 +60,7 @@
 
 #include "solver/io/checkpoint_io.hpp"
 #include "solver/model/boundary.hpp"
+#include "solver/components/implicit_velocity_step.hpp"
 #include "solver/model/implicit_step.hpp"
 #include "solver/model/picard_anderson.hpp"
 #include "solver/model/simulation.hpp"
@@ -99,11 +100,11 @@ double Simulation::step_picard(double dt) {
   // its solves stop at time.solid_picard_tol (an inexact fixed-point iteration: the solve's
   // error need only be small against the change between passes, 0.04 .. 0.2 % of max |u| at
   // the median step); the last pass solves to solver.tol and time.implicit_tol.
-  const double p_tol = poisson_->tol(), v_tol = implicit_ ? implicit_->tol() : 0.0;
+  const double p_tol = poisson_->tol(), v_tol = implicit_ ? implicit_->solver().tol() : 0.0;
   auto tolerances = [&](bool last) {
     const double loose = cfg_.solid_picard_tol;
     poisson_->set_tol(last ? p_tol : std::max(p_tol, loose));
-    if (implicit_) implicit_->set_tol(last ? v_tol : std::max(v_tol, loose));
+    if (implicit_) implicit_->solver().set_tol(last ? v_tol : std::max(v_tol, loose));
   };
   tolerances(cfg_.solid_picard == 0);
   // time.solid_picard_anderson: the first pass's input is u^n (xi moved by it alone)
@@ -117,7 +118,7 @@ double Simulation::step_picard(double dt) {
       for (Field* f : {&picard_ru_, &picard_rv_}) f->resize(nx, ny, ng);
   }
   step_once(dt);
-  long vcycles = implicit_ ? implicit_->last_iterations() : 0;
+  long vcycles = implicit_ ? implicit_->solver().last_iterations() : 0;
   long cycles = last_stats_.iterations + vcycles;
   picard_change_ = 0.0;
   const double th = cfg_.solid_picard_theta;
@@ -137,7 +138,7 @@ double Simulation::step_picard(double dt) {
       std::vector<const Field*> g{&u_, &v_, &uf_, &vf_};
       std::vector<Field*> x{&uk_, &vk_, &ufk_, &vfk_};
       if (defect) {
-        g.insert(g.end(), {&implicit_->last_change(0), &implicit_->last_change(1)});
+        g.insert(g.end(), {&implicit_->solver().last_change(0), &implicit_->solver().last_change(1)});
         x.insert(x.end(), {&dprev_u_, &dprev_v_});
       }
       picard_mix_->next(g, {&picard_ru_, &picard_rv_}, x);
@@ -147,8 +148,8 @@ double Simulation::step_picard(double dt) {
       ufk_ = uf_;
       vfk_ = vf_;
       if (defect) {
-        dprev_u_ = implicit_->last_change(0);
-        dprev_v_ = implicit_->last_change(1);
+        dprev_u_ = implicit_->solver().last_change(0);
+        dprev_v_ = implicit_->solver().last_change(1);
       }
     }
     CheckpointReader r = CheckpointReader::from_payload(snap.payload(), "the step's snapshot");
@@ -165,7 +166,7 @@ double Simulation::step_picard(double dt) {
     step_once(dt);
     xi_transport_ = false;
     defect_ = false;
-    const long v = implicit_ ? implicit_->last_iterations() : 0;
+    const long v = implicit_ ? implicit_->solver().last_iterations() : 0;
     vcycles += v;
     cycles += last_stats_.iterations + v;
     double dmax = 0.0, umax = 0.0;
@@ -195,14 +196,12 @@ void Simulation::picard_start_force() {
 }
 
 void Simulation::picard_defect_force(double dt) {
-  // eta exactly as implicit_viscosity() put it into mimp_ in this pass
+  // eta exactly as the implicit velocity step puts it into its implicit viscosity in this
+  // pass (the same add_solid_viscosity; solver/components/implicit_velocity_step.hpp)
   eta_.fill(0.0);
-  for (const auto& s : solids_)
-    if (s->spec().mu_s > 0.0)
-      s->add_blend(eta_, cfg_.solid_implicit_k * s->wave_modulus() * dt, 0.0,
-                   cfg_.solid_implicit_reach * cfg_.grid.dx);
+  implicit_->add_solid_viscosity(*this, eta_, dt);
   fill_scalar_ghosts(eta_, cfg_.bc);
-  implicit_->compact_operator(eta_, dprev_u_, dprev_v_, aeu_, aev_);
+  implicit_->solver().compact_operator(eta_, dprev_u_, dprev_v_, aeu_, aev_);
   for (int j = 0; j < cfg_.grid.ny; ++j)
     for (int i = 0; i < cfg_.grid.nx; ++i) {
       fx_(i, j) -= aeu_(i, j);
