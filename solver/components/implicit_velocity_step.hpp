@@ -4,8 +4,8 @@
 // It owns the solver of solver/model/implicit_step.hpp (ImplicitVelocity) and the
 // coefficients it is given each step, and
 //  * takes the velocity step of eq. (5.2) in place of the explicit forward Euler
-//    (Component::velocity_step, timed as "implicit velocity"): the implicit viscosity m =
-//    mu_impl + eta, with time.solid_stress = "upper_convected" also the tensor q, then the
+//    (Component::velocity_step, timed by the Simulation as "implicit velocity"): the implicit
+//    viscosity m = mu_impl + eta, with time.solid_stress = "upper_convected" also the tensor q, then the
 //    Helmholtz solve (with the held cells of forcing_hold fixed);
 //  * caps the step with time.solid_implicit_cfl (velocity_step_dt, among the flow's limits;
 //    the explicit viscous and shear-wave limits the Simulation leaves out with these keys);
@@ -49,7 +49,9 @@ class ImplicitVelocityStep : public Component {
   void add_solid_viscosity(const Simulation& sim, Field& m, double dt) const;
 
   // Component
-  const char* name() const override { return "implicit velocity"; }
+  /// Its hooks' row in the timing table (the empty calls at the timed step points); the
+  /// solve itself is timed on its own row, "implicit velocity" (Simulation), one call a step
+  const char* name() const override { return "implicit velocity step"; }
   void register_state(StateRegistry& reg) override { solver_.register_state(reg); }
   bool takes_velocity_step() const override { return true; }
   void velocity_step(Simulation& sim, double dt) override;

@@ -165,7 +165,7 @@ class Component {
   virtual bool takes_velocity_step() const { return false; }
   /// That step (only if takes_velocity_step): u(), v() hold u* with the walls of t + dt,
   /// rho() rho^{n+1}; leaves u** in u_mut(), v_mut(), holding Simulation::held_cells()
-  /// fixed. Timed under name().
+  /// fixed. The Simulation times it on the row "implicit velocity" (one call a step).
   virtual void velocity_step(Simulation&, double /*dt*/) {}
   /// Its limit on the next step (only if takes_velocity_step), for the current state: one of
   /// the flow's own limits (Simulation::flow_limit, which the contact's max_dt reads), not a
