@@ -233,7 +233,7 @@ struct Config {
   ElasticCoupling elastic_coupling = ElasticCoupling::Verlet;
   /// time.verlet_project_drift: the drift's correction (F^n - F^{n-1}) dt / (4 rho) projected
   /// (one more pressure-operator solve per step) so that the face velocity that carries xi
-  /// stays divergence-free (kernels/verlet.hpp; results/fsi.md, "The map compresses the flag")
+  /// stays divergence-free (kernels/verlet.hpp; results/fsi.md, "What compresses the flag's map")
   bool verlet_project_drift = false;
   double solid_implicit_k = 0.5;  ///< time.solid_implicit_k: k of eta = k G dt (stable for k >= 1/4)
   /// time.solid_implicit_reach: cells by which the implicit solid coefficient's blend

@@ -153,7 +153,7 @@ std::vector<KeyDef> build_keys() {
               "with elastic_coupling = `\"verlet\"`: project the drift's stress correction (F^n - F^{n-1}) dt / (4 rho) "
               "onto divergence-free face velocities (one more solve of the pressure operator per step, to 1e-6 "
               "relative) so that xi is carried by a divergence-free velocity; unprojected it compresses thin solids' "
-              "maps (results/fsi.md, \"The map compresses the flag\")"),
+              "maps (results/fsi.md, \"What compresses the flag's map\")"),
       num("time", "solid_implicit_k", d.solid_implicit_k, gt(0),
           "k of the semi-implicit solid stress: eta = k G dt (stable for k >= 1/4, docs/implicit.md)"),
       num("time", "solid_implicit_reach", d.solid_implicit_reach, ge(0, "cells"),
