@@ -15,6 +15,7 @@
 #include "solver/components/implicit_velocity_step.hpp"
 #include "solver/components/markers.hpp"
 #include "solver/components/rigid_bodies.hpp"
+#include "solver/components/solids.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/scene/scene_keys.hpp"
 #include "solver/model/simulation.hpp"
@@ -112,9 +113,11 @@ TEST(ComponentKinds, OptionsAreParsedOnceIntoTypes) {
   ASSERT_NE(sim.component<Markers>(), nullptr);
   EXPECT_EQ(sim.component<Markers>()->points().size(), 4u);
   EXPECT_NE(sim.control_volume_forces(), nullptr);
-  // and the contact component that every scene with solids has (solver/components/contact_component.hpp)
+  // and the two components that every scene with solids has: the solids' own
+  // (solver/components/solids.hpp) and contact (solver/components/contact_component.hpp)
+  ASSERT_NE(sim.component<Solids>(), nullptr);
   ASSERT_NE(sim.component<ContactComponent>(), nullptr);
-  EXPECT_EQ(sim.components().size(), 5u);
+  EXPECT_EQ(sim.components().size(), 6u);
 }
 
 TEST(ComponentKinds, ASceneWithoutThemHasNone) {
@@ -122,6 +125,48 @@ TEST(ComponentKinds, ASceneWithoutThemHasNone) {
   EXPECT_TRUE(c.components.empty());
   Simulation sim(c);
   EXPECT_TRUE(sim.components().empty());
+}
+
+// The solids are a component (solver/components/solids.hpp) that the step calls through typed
+// calls at Algorithm 1's fixed points (steps 1-3, the stress of eq. 5.2), not through hooks:
+// made before the initial state and attached first, its records where the Simulation wrote
+// the solids' before (after the flow's, before contact's), no row of its own in the timing
+// table; the Simulation's accessors answer from it. A scene without solids has none.
+TEST(Components, SolidsAreTheFirstComponentAndKeepTheirRecords) {
+  const Config c = load_scene(testing::scene_path("two_solids_tgv.toml"), {"grid.nx=32", "grid.ny=32"});
+  Simulation sim(c);
+  ASSERT_GE(sim.components().size(), 2u);
+  const auto* solids = dynamic_cast<const Solids*>(sim.components()[0].get());
+  ASSERT_NE(solids, nullptr);
+  EXPECT_EQ(sim.solid_set(), solids);
+  EXPECT_FALSE(solids->has_hooks());
+  EXPECT_NE(dynamic_cast<const ContactComponent*>(sim.components()[1].get()), nullptr);
+  ASSERT_EQ(sim.solids().size(), 2u);
+  EXPECT_EQ(&sim.solids(), &solids->list());
+  EXPECT_TRUE(solids->elastic());
+  EXPECT_EQ(&sim.solid_stress_xx(), &solids->stress_xx());
+
+  const std::vector<std::string> tags = sim.state().tags();
+  const auto at = [&](const std::string& t) { return std::find(tags.begin(), tags.end(), t) - tags.begin(); };
+  const std::ptrdiff_t count = at("sim.solids");
+  ASSERT_LT(count + 2, std::ptrdiff_t(tags.size()));
+  EXPECT_EQ(tags[std::size_t(count - 1)], "sim.poisson_residual");
+  EXPECT_EQ(tags[std::size_t(count + 1)], "solid0");
+  EXPECT_EQ(tags[std::size_t(count + 2)], "solid1");
+  EXPECT_EQ(at("sim.sxx"), at("sim.gyf") + 1);
+  EXPECT_GT(at("contact"), count + 2);
+
+  for (int k = 0; k < 2; ++k) sim.step();
+  EXPECT_EQ(sim.elastic_energy(), solids->elastic_energy());
+  EXPECT_GT(sim.elastic_energy(), 0.0);
+  EXPECT_EQ(sim.timers().entries().count("solids"), 0u);
+  EXPECT_EQ(sim.timers().entries().at("level set").calls, 4);  // one per solid and step
+
+  Simulation fluid(load_scene_string(box_scene(16, kWalls, ""), "fluid.toml"));
+  EXPECT_EQ(fluid.solid_set(), nullptr);
+  EXPECT_TRUE(fluid.solids().empty());
+  EXPECT_EQ(fluid.solid_stress_xx().nx(), 0);
+  EXPECT_EQ(fluid.elastic_energy(), 0.0);
 }
 
 /// Records the step points it is called at, in order.
@@ -141,9 +186,10 @@ TEST(Components, RigidBodiesComeAfterContactAndTheStepCallsThePointsInOrder) {
                            "density = 1.0\nmotion = \"fixed\"\nforcing = \"sharp\"\n";
   const Config c = load_scene_string(box_scene(16, kWalls, body), "post.toml");
   Simulation sim(c);
-  ASSERT_EQ(sim.components().size(), 2u);
-  EXPECT_NE(dynamic_cast<const ContactComponent*>(sim.components()[0].get()), nullptr);
-  const auto* rb = dynamic_cast<const RigidBodiesComponent*>(sim.components()[1].get());
+  ASSERT_EQ(sim.components().size(), 3u);
+  EXPECT_NE(dynamic_cast<const Solids*>(sim.components()[0].get()), nullptr);
+  EXPECT_NE(dynamic_cast<const ContactComponent*>(sim.components()[1].get()), nullptr);
+  const auto* rb = dynamic_cast<const RigidBodiesComponent*>(sim.components()[2].get());
   ASSERT_NE(rb, nullptr);
   EXPECT_EQ(sim.bodies(), &rb->bodies());
   const std::vector<std::string> tags = sim.state().tags();
@@ -178,7 +224,7 @@ TEST(Components, HeldCellsAreCalledAtTheSubstepsPoints) {
     c.splitting = Splitting::Increment;
     if (implicit) c.viscous_time = ViscousTime::Implicit;
     Simulation sim(c);
-    ASSERT_NE(sim.components()[1]->held_cells(), nullptr);
+    ASSERT_NE(sim.components()[2]->held_cells(), nullptr);
     auto log = std::make_unique<PointLog>();
     PointLog* p = log.get();
     sim.add_component(std::move(log));
@@ -206,9 +252,9 @@ TEST(Components, ImplicitVelocityStepKeepsItsRecordsColumnAndWarmStart) {
   // the implicit viscous step with the explicit stress: the Verlet coupling's records follow
   const Config c = load_scene(testing::scene_path("disc_tgv.toml"), {"time.viscous=\"implicit\"", "grid.nx=32", "grid.ny=32"});
   Simulation sim(c);
-  ASSERT_EQ(sim.components().size(), 2u);
-  EXPECT_NE(dynamic_cast<const ContactComponent*>(sim.components()[0].get()), nullptr);
-  const auto* step = dynamic_cast<const ImplicitVelocityStep*>(sim.components()[1].get());
+  ASSERT_EQ(sim.components().size(), 3u);
+  EXPECT_NE(dynamic_cast<const ContactComponent*>(sim.components()[1].get()), nullptr);
+  const auto* step = dynamic_cast<const ImplicitVelocityStep*>(sim.components()[2].get());
   ASSERT_NE(step, nullptr);
   EXPECT_TRUE(step->takes_velocity_step());
   EXPECT_EQ(sim.implicit_velocity(), &step->solver());

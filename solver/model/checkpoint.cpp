@@ -9,6 +9,7 @@
 #include "solver/model/boundary.hpp"
 #include "solver/io/checkpoint_io.hpp"
 #include "solver/model/contact.hpp"
+#include "solver/components/solids.hpp"
 #include "solver/model/simulation.hpp"
 #include "solver/model/solid.hpp"
 
@@ -31,33 +32,13 @@ void get_pods(CheckpointReader& r, const std::string& tag, std::vector<T>& v) {
 
 }  // namespace
 
-void Simulation::register_solids_state() {
-  // a count record first, so that a checkpoint of a scene with other solids fails on it
-  state_.add_record(
-      "sim.solids", [this](CheckpointWriter& w) { w.put_i64("sim.solids", std::int64_t(solids_.size())); },
-      [this](CheckpointReader& r) {
-        if (r.get_i64("sim.solids") != std::int64_t(solids_.size()))
-          throw CheckpointError("checkpoint " + r.path() + ": its scene has another number of solids");
-      });
-  for (std::size_t k = 0; k < solids_.size(); ++k) {
-    const std::string tag = "solid" + std::to_string(k);
-    Solid& s = *solids_[k];
-    state_.add_record(
-        tag, [&s, tag](CheckpointWriter& w) { s.save_state(w, tag); },
-        [&s, tag](CheckpointReader& r) { s.load_state(r, tag); });
-  }
-  // the contact tracker's records are the contact component's
-  // (solver/components/contact_component.hpp), the rigid bodies' ("bodies") theirs
-  // (solver/components/rigid_bodies.hpp)
-}
-
 void Simulation::save_state(CheckpointWriter& w) const { state_.save(w); }
 
 void Simulation::load_state(CheckpointReader& r) {
   state_.load(r);
   // caches keyed by the step count, and the pressure solver's operator of the restored
   // density (as after the step that wrote it; a prescribed flow solves for no pressure)
-  solid_diag_step_ = -1;
+  if (solids_) solids_->invalidate_diagnostics();
   ke_step_ = -1;
   if (cfg_.flow != FlowMode::Prescribed) poisson_->setup(poisson_operator());
 }

@@ -1,6 +1,7 @@
 #pragma once
-// An optional part of a run attached to a Simulation: tracers, material markers, actuated
-// solids, or anything a scene (or a test) adds. Simulation keeps the flow state and
+// An optional part of a run attached to a Simulation: the solids, contact, rigid bodies, the
+// implicit velocity step, tracers, material markers, actuated solids, or anything a scene
+// (or a test) adds (docs/components.md). Simulation keeps the flow state and
 // Algorithm 1; a component
 //  * registers its persistent state once (StateRegistry: checkpointed by construction),
 //  * may limit the time step (max_dt),
@@ -123,6 +124,10 @@ class Component {
   virtual double max_dt(const Simulation&) const { return std::numeric_limits<double>::infinity(); }
   /// Called at each point of every step, in the step's order.
   virtual void at(StepPoint, Simulation&, double /*dt*/) {}
+  /// False for a component whose work the Simulation calls at fixed points through typed
+  /// calls of its own (the solids: solver/components/solids.hpp): at() is then never called
+  /// and the timing table has no row of its name.
+  virtual bool has_hooks() const { return true; }
   /// Whether it sets solid k's reference map itself (a rigid body's, from its pose): the
   /// solid is then neither advected nor extrapolated by Algorithm 1 steps 1-2.
   virtual bool moves_solid(int /*k*/) const { return false; }

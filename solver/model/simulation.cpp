@@ -22,6 +22,7 @@
 #include "solver/components/control_volume_forces.hpp"
 #include "solver/components/implicit_velocity_step.hpp"
 #include "solver/components/rigid_bodies.hpp"
+#include "solver/components/solids.hpp"
 #include "solver/io/expression.hpp"
 #include "solver/model/time_step_limits.hpp"
 
@@ -35,14 +36,16 @@ Simulation::Simulation(const Config& cfg) : cfg_(cfg), sides_(face_sides(cfg_.bc
   for (Field* f : {&uf_, &beta_x_, &gxf_}) f->resize(nx + 1, ny, ng);
   for (Field* f : {&vf_, &beta_y_, &gyf_}) f->resize(nx, ny + 1, ng);
   for (Field* f : {&k2x_, &k2y_}) f->resize(nx, ny, ng);
-  bool elastic = false;
-  for (const SolidSpec& sp : cfg_.solids) {
-    solids_.push_back(std::make_unique<Solid>(sp, cfg_.solid_opt, cfg_.grid, sides_, cfg_.rho_f));
-    elastic = elastic || sp.mu_s > 0.0;
+  if (Solids::needed(cfg_)) {
+    // a component made before the initial state (the initial velocity and density are the
+    // solids'); its records are registered by register_state(), where they were before it
+    // was a component, and add_components puts it first
+    auto c = std::make_unique<Solids>(cfg_, sides_);
+    solids_ = c.get();
+    components_.push_back(std::move(c));
   }
-  if (elastic)
-    for (Field* f : {&sxx_, &sxy_, &syy_}) f->resize(nx, ny, ng);
-  for (const SolidSpec& sp : cfg_.solids) density_contrast_ = density_contrast_ || sp.density != cfg_.rho_f;
+  const bool elastic = solids_ && solids_->elastic();
+  density_contrast_ = solids_ && solids_->density_contrast();
   if (density_contrast_ && cfg_.advection == FluxScheme::Central && cfg_.jump_flux == JumpFlux::Superbee) {
     jump_x_.resize(nx + 1, ny, ng);
     jump_y_.resize(nx, ny + 1, ng);
@@ -103,16 +106,21 @@ void Simulation::register_state() {
   // the checkpoint's records, in this order (solver/model/checkpoint.cpp)
   state_.add_value("sim.t", t_);
   state_.add_count("sim.step", nstep_);
+  // the solids' blended stress tensor and elastic energy keep their place among the flow's
+  // records (empty fields and a zero without a solid)
+  const auto stress = solids_ ? solids_->stress_fields() : std::array<Field*, 3>{&no_stress_, &no_stress_, &no_stress_};
   const std::pair<const char*, Field*> fields[] = {
-      {"u", &u_},     {"v", &v_},       {"p", &p_},     {"rho", &rho_}, {"rho_old", &rho_old_},
-      {"mu", &mu_},   {"uf", &uf_},     {"vf", &vf_},   {"dp", &dp_},   {"gxf", &gxf_},
-      {"gyf", &gyf_}, {"sxx", &sxx_},   {"sxy", &sxy_}, {"syy", &syy_}, {"beta_x", &beta_x_},
+      {"u", &u_},          {"v", &v_},          {"p", &p_},          {"rho", &rho_},      {"rho_old", &rho_old_},
+      {"mu", &mu_},        {"uf", &uf_},        {"vf", &vf_},        {"dp", &dp_},        {"gxf", &gxf_},
+      {"gyf", &gyf_},      {"sxx", stress[0]},  {"sxy", stress[1]},  {"syy", stress[2]},  {"beta_x", &beta_x_},
       {"beta_y", &beta_y_}};
   for (const auto& [name, f] : fields) state_.add_field(std::string("sim.") + name, *f);
-  state_.add_value("sim.elastic_energy", elastic_energy_);
+  state_.add_value("sim.elastic_energy", solids_ ? solids_->elastic_energy_mut() : no_energy_);
   state_.add_count("sim.poisson_iterations", last_stats_.iterations);
   state_.add_value("sim.poisson_residual", last_stats_.rel_residual);
-  register_solids_state();
+  // the solids' component's records (the count, each solid's window and arrays), here (not
+  // when attached) so that checkpoints keep their order
+  if (solids_) solids_->register_state(state_);
   // the implicit velocity step's initial guesses (warm start) and solve statistics: its
   // component's records, here (not when attached) so that checkpoints keep their order
   if (implicit_) implicit_->register_state(state_);
@@ -131,16 +139,19 @@ void Simulation::register_state() {
 }
 
 void Simulation::add_components() {
-  // the components made before the initial state (the rigid bodies, then the implicit
-  // velocity step), attached after contact
+  // the components made before the initial state (the solids, the rigid bodies, then the
+  // implicit velocity step): the solids first, the others after contact
   std::vector<std::unique_ptr<Component>> early = std::move(components_);
   components_.clear();
+  for (auto& c : early)
+    if (c && c.get() == solids_) components_.push_back(std::move(c));  // registered by register_state()
   // contact first whenever there are solids: its hooks come first at each step point (the
   // gaps are observed at the step's end before any other component moves anything; its
   // force is in G_f before the rigid bodies' cut faces) and its time-step limit reads the
   // flow's limit alone (flow_limit)
-  if (!solids_.empty()) add_component(std::make_unique<ContactComponent>(*this));
+  if (solids_) add_component(std::make_unique<ContactComponent>(*this));
   for (auto& c : early) {
+    if (!c) continue;  // the solids, attached above
     if (c.get() == implicit_) components_.push_back(std::move(c));  // registered by register_state()
     else add_component(std::move(c));
   }
@@ -148,7 +159,7 @@ void Simulation::add_components() {
   // registration order, which is the order of their hooks at one step point
   for (const auto& [kind, options] : cfg_.components)
     if (auto c = component_kind(kind).make(*options, *this)) add_component(std::move(c));
-  solid_diag_step_ = -1;  // u_mut()/v_mut() may still change the initial state
+  if (solids_) solids_->invalidate_diagnostics();  // u_mut()/v_mut() may still change the initial state
 }
 
 void Simulation::add_component(std::unique_ptr<Component> c) {
@@ -158,10 +169,12 @@ void Simulation::add_component(std::unique_ptr<Component> c) {
 
 void Simulation::call_components(StepPoint p, double dt, bool timed) {
   if (!timed) {
-    for (const auto& c : components_) c->at(p, *this, dt);
+    for (const auto& c : components_)
+      if (c->has_hooks()) c->at(p, *this, dt);
     return;
   }
   for (const auto& c : components_) {
+    if (!c->has_hooks()) continue;
     ScopedPhase ph(timers_, c->name());
     c->at(p, *this, dt);
   }
@@ -253,73 +266,18 @@ void Simulation::blend_material_fields() {
   // eq. (3.6): q = q_f + sum_i (1 - H_i) (q_s,i - q_f) for density and viscosity
   parallel_fill(rho_.raw(), rho_.raw_size(), cfg_.rho_f);
   parallel_fill(mu_.raw(), mu_.raw_size(), cfg_.mu_f);
-  for (const auto& s : solids_) {
-    s->add_blend(rho_, s->spec().density, cfg_.rho_f);
-    s->add_blend(mu_, s->spec().viscosity, cfg_.mu_f);
-  }
+  if (solids_) solids_->blend(rho_, mu_, cfg_.rho_f, cfg_.mu_f);
   fill_scalar_ghosts(rho_, cfg_.bc);
   fill_scalar_ghosts(mu_, cfg_.bc);
 }
 
-namespace {
-
-// Work of a solid's phase for parallel_items, in cells of a simple row loop (the unit of
-// kMinParallelCells): window cells times the cost of a window cell relative to an axpy
-// cell. Measured on two_solids_tgv, 1 thread: advection + extrapolation + level set
-// ~200 ns per window cell and step, the window stress ~15 ns, the diagnostics a few ns;
-// an axpy cell ~0.5-1 ns.
-constexpr long kStepCellCost = 64, kStressCellCost = 16, kDiagnosticsCellCost = 4;
-
-long window_work(const Solid& s, long cell_cost) { return long(s.ni()) * s.nj() * cell_cost; }
-
-}  // namespace
-
 void Simulation::update_solids(double dt) {
-  // Algorithm 1, steps 1-2 for every solid: each solid's work touches only its own window
-  // and workspaces, so the solids run concurrently, one solid per thread
-  // (kernels/loop.hpp, parallel_items); a single or dominant solid threads its row loops.
-  using clock = std::chrono::steady_clock;
-  const int n = int(solids_.size());
-  // per solid: [xi advection without its stage re-extrapolations, extrapolation, level set]
-  std::vector<std::array<double, 3>> secs(std::size_t(n), std::array<double, 3>{});
-  const auto w0 = clock::now();
-  // (the rigid bodies moved to their poses of t + dt at StepPoint::Begin)
-  parallel_items(n, [&](int k) { return window_work(*solids_[std::size_t(k)], kStepCellCost); }, [&](int k) {
-    Solid& s = *solids_[std::size_t(k)];
-    // the RK-4 stages re-extrapolate the band (Solid::advect): that time is booked under
-    // "extrapolation", the rest under "xi advection"
-    const double ext0 = s.extrapolation_counters().seconds;
-    const auto t0 = clock::now();
-    // a rigid body's reference map is set from its pose, not advected (solver/components/rigid_bodies.hpp)
-    bool rigid = false;
-    for (const auto& c : components_) rigid = rigid || c->moves_solid(k);
-    // time.solid_picard_iterations: a repeated pass moves xi with the blend of u^n and the
-    // last pass's u^{n+1} (solver/model/solid_picard.cpp)
-    if (!rigid) {
-      if (xi_transport_) s.advect(uf_adv_, vf_adv_, u_adv_, v_adv_, dt);
-      else s.advect(verlet_ ? wf_ : uf_, verlet_ ? wv_ : vf_, u_, v_, dt);  // time.elastic_coupling
-    }
-    const double t_adv = std::chrono::duration<double>(clock::now() - t0).count();
-    if (!rigid) s.extrapolate();
-    for (const auto& c : components_) c->place_solid(k, solids_);  // the rigid bodies' maps
-    const double t_ext = s.extrapolation_counters().seconds - ext0;
-    const double t_stage_ext = std::min(t_ext, t_adv);
-    const auto t1 = clock::now();
-    s.rebuild_level_set();
-    secs[std::size_t(k)] = {t_adv - t_stage_ext, t_ext,
-                            std::chrono::duration<double>(clock::now() - t1).count()};
-  });
-  // PhaseTimers is not thread-safe: book here, the wall time of the region split in the
-  // proportions of the solids' (thread) times, one call per solid as before
-  const double wall = std::chrono::duration<double>(clock::now() - w0).count();
-  std::array<double, 3> sum{};
-  for (const auto& a : secs)
-    for (int c = 0; c < 3; ++c) sum[std::size_t(c)] += a[std::size_t(c)];
-  const double all = sum[0] + sum[1] + sum[2];
-  const double scale = all > 0.0 ? wall / all : 0.0;
-  timers_.add("xi advection", sum[0] * scale, n);
-  timers_.add("extrapolation", sum[1] * scale, n);
-  timers_.add("level set", sum[2] * scale, n);
+  // time.solid_picard_iterations: a repeated pass moves xi with the blend of u^n and the
+  // last pass's u^{n+1} (solver/model/solid_picard.cpp); time.elastic_coupling = "verlet":
+  // with the drift's midpoint faces
+  if (!solids_) return;
+  if (xi_transport_) solids_->move({uf_adv_, vf_adv_, u_adv_, v_adv_}, dt, components_, timers_);
+  else solids_->move({verlet_ ? wf_ : uf_, verlet_ ? wv_ : vf_, u_, v_}, dt, components_, timers_);
 }
 
 void Simulation::drift_velocities(double dt) {
@@ -381,22 +339,7 @@ void Simulation::project_drift(double cv, double cf) {
 }
 
 void Simulation::solid_force() {
-  const Grid& g = cfg_.grid;
-  elastic_energy_ = 0.0;
-  if (sxx_.nx() == 0) return;
-  // the stress on each window, solids concurrently; then the blend into the global tensor
-  // (or force), serially in solid order: windows overlap, and the sums must have the same
-  // bits for any number of threads
-  parallel_items(int(solids_.size()),
-                 [&](int k) { return window_work(*solids_[std::size_t(k)], kStressCellCost); },
-                 [&](int k) { solids_[std::size_t(k)]->compute_stress(); });
-  for (Field* f : {&sxx_, &sxy_, &syy_}) parallel_fill(f->raw(), f->raw_size(), 0.0);
-  for (const auto& s : solids_) elastic_energy_ += s->blend_stress_into(sxx_, sxy_, syy_, fx_, fy_);
-  if (cfg_.solid_opt.conservative && cfg_.solid_opt.stress_form == StressForm::Cell) {
-    for (Field* f : {&sxx_, &sxy_, &syy_}) fill_scalar_ghosts(*f, cfg_.bc);
-    add_stress_divergence(sxx_.view(), sxy_.view(), syy_.view(), fx_.view(), fy_.view(), g.nx,
-                          g.ny, g.dx);
-  }
+  if (solids_) solids_->stress_force(fx_, fy_, cfg_);
 }
 
 std::pair<double, double> Simulation::momentum() const {
@@ -433,7 +376,7 @@ void Simulation::initialise() {
   VelocityFunction vel(cfg_.init, g);
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i) vel(g.xc(i), g.yc(j), t_, u_(i, j), v_(i, j));
-  for (const auto& s : solids_) s->impose_initial_velocity(u_, v_);
+  if (solids_) solids_->impose_initial_velocity(u_, v_);
   blend_material_fields();
   rho_old_ = rho_;
   build_poisson_coefficients();
@@ -501,11 +444,7 @@ double Simulation::stable_dt() const {
   // |g| |rho_s - rho_f| / rho_s (a light one rises faster than |g|), the fluid by none;
   // |g| itself is kept as a floor
   const double gmag = std::hypot(cfg_.gx, cfg_.gy);
-  double accel = gmag;
-  if (gmag > 0.0)
-    for (const auto& s : solids_)
-      if (!s->spec().rigid())  // a rigid body's motion is imposed
-        accel = std::max(accel, gmag * std::abs(s->spec().density - cfg_.rho_f) / s->spec().density);
+  const double accel = solids_ && gmag > 0.0 ? solids_->gravity_acceleration(gmag) : gmag;
   if (accel > 0.0) {
     // with gravity, the speed at the step's end, umax + a dt, in the Courant number:
     // dt (umax + a dt) <= cfl dx, so a step from rest is bounded too (cfl dx / umax is
@@ -525,8 +464,7 @@ double Simulation::stable_dt() const {
   // semi-implicit solid stress: solver/model/implicit_step.hpp)
   if (nu_max > 0.0 && cfg_.viscous_time == ViscousTime::Explicit)
     dt = std::min(dt, viscous_dt_limit(cfg_.visc_safety, g.dx, nu_max));
-  if (cfg_.solid_time == SolidStressTime::Explicit)
-    for (const auto& s : solids_) dt = std::min(dt, s->min_dt());
+  if (cfg_.solid_time == SolidStressTime::Explicit && solids_) dt = std::min(dt, solids_->explicit_dt());
   // the velocity step's own limit in their place (the implicit stress's cap
   // time.solid_implicit_cfl: solver/components/implicit_velocity_step.hpp), part of the flow's
   if (velocity_step_) dt = std::min(dt, velocity_step_->velocity_step_dt(*this));
@@ -547,12 +485,12 @@ double Simulation::step(double dt) {
 double Simulation::step_state(double dt) {
   if (dt <= 0.0) dt = cfg_.dt_fixed > 0.0 ? cfg_.dt_fixed : stable_dt();
   if (cfg_.flow == FlowMode::Prescribed) return step_prescribed(dt);
-  if (cfg_.solid_picard > 0 && !solids_.empty()) return step_picard(dt);
+  if (cfg_.solid_picard > 0 && solids_) return step_picard(dt);
   return step_once(dt);
 }
 
 double Simulation::step_once(double dt) {
-  if (!solids_.empty()) {
+  if (solids_) {
     rho_old_ = rho_;
     if (verlet_) drift_velocities(dt);   // time.elastic_coupling = "verlet"
     move_solids(dt);                     // steps 1-3
@@ -562,7 +500,7 @@ double Simulation::step_once(double dt) {
   apply_viscous_and_solid_stress(dt);
   if (increment_) end_substeps(dt);      // time.splitting = "increment": u += dt G_c^n
   call_components(StepPoint::Stressed, dt);
-  if (!solids_.empty()) setup_poisson();
+  if (solids_) setup_poisson();
   call_components(StepPoint::Forces, dt);  // face forces of the new configuration (contact)
   face_accelerations(dt);                // step 5's G_f, eq. (5.3)
   call_components(StepPoint::BeforePredictor, dt);  // rigid bodies' forcing ("bodies")
@@ -659,8 +597,8 @@ void Simulation::apply_viscous_and_solid_stress(double dt) {
   // eq. (5.2): split viscous step, forward Euler, divergence of the (blended) stress
   const Grid& g = cfg_.grid;
   const int nx = g.nx, ny = g.ny;
-  bool viscous = cfg_.mu_f > 0.0, elastic = sxx_.nx() > 0;
-  for (const auto& s : solids_) viscous = viscous || s->spec().viscosity > 0.0;
+  const bool viscous = cfg_.mu_f > 0.0 || (solids_ && solids_->viscous());
+  const bool elastic = solids_ && solids_->elastic();
   if (viscous || elastic) {
     ScopedPhase ph(timers_, "viscous");
     apply_velocity_bc(u_, v_, t_ + dt);
@@ -723,8 +661,7 @@ void Simulation::begin_substeps(double dt) {
   face_accel(p_.view(), beta_x_.view(), beta_y_.view(), gxf_.view(), gyf_.view(), nx, ny, g.dx, cfg_.gx,
              cfg_.gy, cfg_.rho_f, sides_);
   call_components(StepPoint::FaceAccelerations, dt, false);  // contact, the bodies' cut faces
-  bool viscous = cfg_.mu_f > 0.0;
-  for (const auto& s : solids_) viscous = viscous || s->spec().viscosity > 0.0;
+  const bool viscous = cfg_.mu_f > 0.0 || (solids_ && solids_->viscous());
   if (viscous) {
     apply_velocity_bc(u_, v_, t_);
     viscous_force(u_.view(), v_.view(), mu_.view(), vnx_.view(), vny_.view(), nx, ny, g.dx);
@@ -893,16 +830,20 @@ double Simulation::max_face_divergence() const {
 
 const std::vector<SolidDiagnostics>& Simulation::solid_diagnostics() const {
   // keyed by the step count: the state changes only in step() (and through u_mut()/v_mut()
-  // before the first step, which the -1 of the constructor's evaluation below covers)
-  if (solid_diag_step_ != nstep_ || solid_diag_.size() != solids_.size()) {
-    solid_diag_.resize(solids_.size());
-    // each solid's sums over its own window into its own entry: solids concurrently
-    parallel_items(int(solids_.size()),
-                   [&](int k) { return window_work(*solids_[std::size_t(k)], kDiagnosticsCellCost); },
-                   [&](int k) { solid_diag_[std::size_t(k)] = solids_[std::size_t(k)]->diagnostics(u_, v_); });
-    solid_diag_step_ = nstep_;
-  }
-  return solid_diag_;
+  // before the first step, which add_components' invalidation covers)
+  static const std::vector<SolidDiagnostics> none;
+  return solids_ ? solids_->diagnostics(u_, v_, nstep_) : none;
 }
+
+std::vector<std::unique_ptr<Solid>>& Simulation::solids_mut() {
+  if (!solids_) return no_solids_;
+  solids_->invalidate_diagnostics();
+  return solids_->list();
+}
+const std::vector<std::unique_ptr<Solid>>& Simulation::solids() const { return solids_ ? solids_->list() : no_solids_; }
+double Simulation::elastic_energy() const { return solids_ ? solids_->elastic_energy() : 0.0; }
+const Field& Simulation::solid_stress_xx() const { return solids_ ? solids_->stress_xx() : no_stress_; }
+const Field& Simulation::solid_stress_xy() const { return solids_ ? solids_->stress_xy() : no_stress_; }
+const Field& Simulation::solid_stress_yy() const { return solids_ ? solids_->stress_yy() : no_stress_; }
 
 }  // namespace refmap

@@ -28,6 +28,7 @@ class ControlVolumeForces;
 class Contact;
 class ImplicitVelocity;
 class ImplicitVelocityStep;
+class Solids;
 
 class Simulation {
  public:
@@ -85,7 +86,7 @@ class Simulation {
   /// (solver/io/state_registry.hpp); save_state / load_state iterate it.
   const StateRegistry& state() const { return state_; }
   /// The solids, for components that change them between steps (actuation).
-  std::vector<std::unique_ptr<Solid>>& solids_mut() { solid_diag_step_ = -1; return solids_; }
+  std::vector<std::unique_ptr<Solid>>& solids_mut();
 
   /// For the components at StepPoint::FaceAccelerations: the face accelerations G_f
   /// being assembled, the face coefficients beta_f = 1/rho_f and the sides.
@@ -118,13 +119,14 @@ class Simulation {
   /// Cell field by probe/output name: u, v, p, density, speed, vorticity (ghosts filled).
   Field named_field(const std::string& name) const;
 
-  // solids
-  const std::vector<std::unique_ptr<Solid>>& solids() const { return solids_; }
-  double elastic_energy() const { return elastic_energy_; }  ///< at the last stress evaluation
+  // solids: the solids' component (solver/components/solids.hpp), null without a solid
+  const Solids* solid_set() const { return solids_; }
+  const std::vector<std::unique_ptr<Solid>>& solids() const;
+  double elastic_energy() const;  ///< at the last stress evaluation
   /// Global blended solid stress (conservative form); empty when there are no elastic solids.
-  const Field& solid_stress_xx() const { return sxx_; }
-  const Field& solid_stress_xy() const { return sxy_; }
-  const Field& solid_stress_yy() const { return syy_; }
+  const Field& solid_stress_xx() const;
+  const Field& solid_stress_xy() const;
+  const Field& solid_stress_yy() const;
   /// Contact model and gap/event tracker of the contact component
   /// (solver/components/contact_component.hpp; null without solids).
   const Contact* contact() const;
@@ -188,8 +190,6 @@ class Simulation {
   /// component registers them here, where they were before it was a component); the other
   /// components add theirs when attached.
   void register_state();
-  /// The solids' and the rigid bodies' records (solver/model/checkpoint.cpp).
-  void register_solids_state();
   /// The components: contact with solids (solver/components/contact_component.hpp), the
   /// rigid bodies and the implicit velocity step (made before the initial state;
   /// solver/components/rigid_bodies.hpp, implicit_velocity_step.hpp), then the scene's
@@ -250,8 +250,8 @@ class Simulation {
   /// The time the projection corrects the face velocities with: time.rhie_chow_dt, or dt.
   double projection_time(double dt) const;
 
-  /// Algorithm 1 steps 1-2 for every solid (timed as "xi advection", "extrapolation",
-  /// "level set"); xi is carried by the face velocities uf_, vf_ or, with
+  /// Algorithm 1 steps 1-2 for every solid (Solids::move, timed as "xi advection",
+  /// "extrapolation", "level set"); xi is carried by the face velocities uf_, vf_ or, with
   /// time.elastic_coupling = "verlet", by the midpoint faces wf_, wv_.
   void update_solids(double dt);
   /// time.elastic_coupling = "verlet", before the solids move: the midpoint face velocities
@@ -261,7 +261,7 @@ class Simulation {
   /// with the pressure operator (cv, cf: the coefficients of verlet_drift_faces).
   void project_drift(double cv, double cf);
   void blend_material_fields();
-  /// Force of the solid stresses (conservative or not) into fx_, fy_ (which it overwrites).
+  /// Force of the solid stresses (conservative or not) added to fx_, fy_ (Solids::stress_force).
   void solid_force();
   void impose_prescribed_velocity(double t);
 
@@ -281,16 +281,18 @@ class Simulation {
   // RK-4 work arrays (momentum rho u, rho v)
   Field mx_, my_, kx_, ky_, sx_, sy_, fx_, fy_, k2x_, k2y_;
   Field gxf_, gyf_;                        // face accelerations G_f of eqs. (5.3), (5.7)
-  std::vector<std::unique_ptr<Solid>> solids_;
-  mutable std::vector<SolidDiagnostics> solid_diag_;  ///< cache of solid_diagnostics()
-  mutable long solid_diag_step_ = -1;                 ///< the step it belongs to (-1: none)
+  /// The solids' component (owned by components_; null without a solid): the solids, their
+  /// blended stress, elastic energy and diagnostics (solver/components/solids.hpp).
+  Solids* solids_ = nullptr;
+  /// What the solids' accessors and records show without a solid (always empty / zero).
+  std::vector<std::unique_ptr<Solid>> no_solids_;
+  Field no_stress_;
+  double no_energy_ = 0.0;
   mutable double ke_cache_ = 0.0;                     ///< kinetic_energy() of step ke_step_
   mutable long ke_step_ = -1;                         ///< (-1: none)
-  Field sxx_, sxy_, syy_;                  // blended solid stress (global, if any solid is elastic)
-  double elastic_energy_ = 0.0;
   bool prescribed_depends_on_time_ = false;  ///< flow = "prescribed" with an expression of t
   /// the rigid bodies' component's (solver/components/rigid_bodies.hpp); null unless a solid
-  /// is rigid. The held cells below still call it directly.
+  /// is rigid (bodies(), for tests and tools).
   RigidBodies* bodies_ = nullptr;
   bool increment_ = false;                 // time.splitting = "increment"
   const std::vector<std::array<int, 3>>* held_ = nullptr;  // a component's held cells (held_cells)

@@ -61,6 +61,7 @@
 #include "solver/io/checkpoint_io.hpp"
 #include "solver/model/boundary.hpp"
 #include "solver/components/implicit_velocity_step.hpp"
+#include "solver/components/solids.hpp"
 #include "solver/model/implicit_step.hpp"
 #include "solver/model/picard_anderson.hpp"
 #include "solver/model/simulation.hpp"
@@ -154,7 +155,7 @@ double Simulation::step_picard(double dt) {
     }
     CheckpointReader r = CheckpointReader::from_payload(snap.payload(), "the step's snapshot");
     state_.load(r);
-    solid_diag_step_ = -1;  // caches keyed by the step count (as load_state)
+    if (solids_) solids_->invalidate_diagnostics();  // caches keyed by the step count (as load_state)
     ke_step_ = -1;
     blend_into(uf_adv_, uf_, ufk_, th);
     blend_into(vf_adv_, vf_, vfk_, th);
@@ -186,13 +187,13 @@ void Simulation::picard_start_force() {
   // F(xi^n) of the state as a step's stress computes it (xi, its band and phi are those the
   // last move_solids or the construction left); the step recomputes the stress tensor and the
   // elastic energy of its own xi, the energy is kept for the diagnostics of t^n
-  const double e = elastic_energy_;
+  const double e = solids_->elastic_energy();
   fx_.fill(0.0);
   fy_.fill(0.0);
   solid_force();
   fpx_ = fx_;
   fpy_ = fy_;
-  elastic_energy_ = e;
+  solids_->elastic_energy_mut() = e;
 }
 
 void Simulation::picard_defect_force(double dt) {
