@@ -37,39 +37,6 @@ double wall_seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// Cell fields of the solids for the VTK frames: the solid nearest each cell (smallest
-/// phi) gives phi and xi (0 outside every band); phi is capped at the widest band.
-void solid_output_fields(const Simulation& sim, Field& phi, Field& xix, Field& xiy,
-                         Field& normal) {
-  const Grid& g = sim.grid();
-  const Field &sxx = sim.solid_stress_xx(), &syy = sim.solid_stress_yy();
-  phi.resize(g.nx, g.ny, Grid::ng, 1e30);
-  xix.resize(g.nx, g.ny, Grid::ng, 0.0);
-  xiy.resize(g.nx, g.ny, Grid::ng, 0.0);
-  normal.resize(g.nx, g.ny, Grid::ng, 0.0);
-  for (const auto& s : sim.solids()) {
-    for (int j = 0; j < s->nj(); ++j)
-      for (int i = 0; i < s->ni(); ++i) {
-        const int gi = s->wrap().i(s->i0() + i), gj = s->wrap().j(s->j0() + j);
-        const double ph = s->phi()(i, j);
-        if (ph < phi(gi, gj)) {
-          phi(gi, gj) = ph;
-          if (ph < s->band()) {
-            xix(gi, gj) = s->xi_x()(i, j);
-            xiy(gi, gj) = s->xi_y()(i, j);
-          }
-        }
-      }
-  }
-  double cap = 0.0;
-  for (const auto& s : sim.solids()) cap = std::max(cap, s->band());
-  for (int j = 0; j < g.ny; ++j)
-    for (int i = 0; i < g.nx; ++i) {
-      phi(i, j) = std::min(phi(i, j), cap);
-      if (sxx.nx() > 0) normal(i, j) = 0.5 * (sxx(i, j) + syy(i, j));
-    }
-}
-
 /// The files of a run in opt.out_dir; every writer does nothing without an output
 /// directory (and the frames nothing with write_vtk = false).
 class RunOutput {
@@ -242,20 +209,11 @@ class RunOutput {
     Field vort = sim_.named_field("vorticity");
     std::vector<VtkScalar> scalars{{"p", &sim_.p()}, {"vorticity", &vort}, {"density", &sim_.rho()}};
     std::vector<VtkVector> vectors{{"velocity", &sim_.u(), &sim_.v()}};
-    Field phi, xix, xiy, normal;
-    if (!sim_.solids().empty()) {
-      solid_output_fields(sim_, phi, xix, xiy, normal);
-      scalars.push_back({"phi", &phi});
-      scalars.push_back({"normal_stress", &normal});
-      vectors.push_back({"xi", &xix, &xiy});
-      if (sim_.solid_stress_xx().nx() > 0) {
-        scalars.push_back({"stress_xx", &sim_.solid_stress_xx()});
-        scalars.push_back({"stress_xy", &sim_.solid_stress_xy()});
-        scalars.push_back({"stress_yy", &sim_.solid_stress_yy()});
-      }
-    }
-    for (const auto& c : sim_.components())  // the components' own fields (solver/model/component.hpp)
-      for (const auto& [field_name, f] : c->frame_fields()) scalars.push_back({field_name, f});
+    // the components' fields (solver/model/component.hpp), the solids' first
+    FrameFields extra;
+    for (const auto& c : sim_.components()) c->frame_fields(extra);
+    for (const auto& [field_name, f] : extra.scalars) scalars.push_back({field_name, f});
+    for (const auto& v : extra.vectors) vectors.push_back({v.name, v.x, v.y});
     write_vti((fs::path(dir_) / name).string(), sim_.grid(), scalars, vectors, sim_.time());
   }
 

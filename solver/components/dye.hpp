@@ -45,7 +45,7 @@ class Dye : public Component {
   void at(StepPoint p, Simulation& sim, double dt) override;
   std::vector<std::string> columns() const override { return {"dye_total", "dye_min", "dye_max"}; }
   void values(const Simulation& sim, std::vector<double>& out) const override;
-  std::vector<std::pair<std::string, const Field*>> frame_fields() const override { return {{"dye", &c_}}; }
+  void frame_fields(FrameFields& out) const override { out.scalars.emplace_back("dye", &c_); }
 
  private:
   /// r = -div(u_f q) of q (its ghosts filled first).

@@ -12,6 +12,7 @@
 #include "solver/io/state_registry.hpp"
 #include "solver/io/timers.hpp"
 #include "solver/model/boundary.hpp"
+#include "solver/model/simulation.hpp"
 
 namespace refmap {
 
@@ -28,7 +29,7 @@ long window_work(const Solid& s, long cell_cost) { return long(s.ni()) * s.nj() 
 
 }  // namespace
 
-Solids::Solids(const Config& cfg, const Sides& sides) : rho_f_(cfg.rho_f) {
+Solids::Solids(const Config& cfg, const Sides& sides) : grid_(cfg.grid), rho_f_(cfg.rho_f) {
   bool elastic = false;
   for (const SolidSpec& sp : cfg.solids) {
     solids_.push_back(std::make_unique<Solid>(sp, cfg.solid_opt, cfg.grid, sides, cfg.rho_f));
@@ -82,6 +83,47 @@ double Solids::explicit_dt() const {
   double dt = std::numeric_limits<double>::infinity();
   for (const auto& s : solids_) dt = std::min(dt, s->min_dt());
   return dt;
+}
+
+void Solids::values(const Simulation& sim, std::vector<double>& out) const {
+  out.push_back(elastic_energy_);
+  out.push_back(sim.kinetic_energy() + elastic_energy_);
+}
+
+void Solids::frame_fields(FrameFields& out) const {
+  const Grid& g = grid_;
+  Field& phi = out.owned.emplace_back(g.nx, g.ny, Grid::ng, 1e30);
+  Field& xix = out.owned.emplace_back(g.nx, g.ny, Grid::ng, 0.0);
+  Field& xiy = out.owned.emplace_back(g.nx, g.ny, Grid::ng, 0.0);
+  Field& normal = out.owned.emplace_back(g.nx, g.ny, Grid::ng, 0.0);
+  for (const auto& s : solids_) {
+    for (int j = 0; j < s->nj(); ++j)
+      for (int i = 0; i < s->ni(); ++i) {
+        const int gi = s->wrap().i(s->i0() + i), gj = s->wrap().j(s->j0() + j);
+        const double ph = s->phi()(i, j);
+        if (ph < phi(gi, gj)) {
+          phi(gi, gj) = ph;
+          if (ph < s->band()) {
+            xix(gi, gj) = s->xi_x()(i, j);
+            xiy(gi, gj) = s->xi_y()(i, j);
+          }
+        }
+      }
+  }
+  double cap = 0.0;
+  for (const auto& s : solids_) cap = std::max(cap, s->band());
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      phi(i, j) = std::min(phi(i, j), cap);
+      if (elastic()) normal(i, j) = 0.5 * (sxx_(i, j) + syy_(i, j));
+    }
+  out.scalars.emplace_back("phi", &phi);
+  out.scalars.emplace_back("normal_stress", &normal);
+  out.vectors.push_back({"xi", &xix, &xiy});
+  if (elastic())
+    for (const auto& [name, f] : {std::pair<const char*, const Field*>{"stress_xx", &sxx_}, {"stress_xy", &sxy_},
+                                  {"stress_yy", &syy_}})
+      out.scalars.emplace_back(name, f);
 }
 
 void Solids::impose_initial_velocity(Field& u, Field& v) const {

@@ -18,6 +18,7 @@
 // for the same reason (stress_fields, elastic_energy_mut).
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/field.hpp"
@@ -39,6 +40,16 @@ class Solids : public Component {
   const char* name() const override { return "solids"; }
   /// Its work is called through the typed calls below, at Algorithm 1's fixed points.
   bool has_hooks() const override { return false; }
+  /// diagnostics.csv: elastic_energy and total_energy (kinetic plus elastic), right after
+  /// the flow's last built-in column, wall_time (contact's and the implicit step's columns
+  /// name total_energy and follow).
+  std::vector<std::string> columns() const override { return {"elastic_energy", "total_energy"}; }
+  void values(const Simulation& sim, std::vector<double>& out) const override;
+  const char* columns_after() const override { return "wall_time"; }
+  /// VTK frames: phi and xi of the solid nearest each cell (smallest phi; xi 0 outside
+  /// every band, phi capped at the widest band), the mean normal stress (sxx + syy) / 2, and
+  /// with an elastic solid the blended tensor stress_xx, stress_xy, stress_yy.
+  void frame_fields(FrameFields& out) const override;
   /// The count record "sim.solids" (a checkpoint of a scene with other solids fails on it),
   /// then "solid<k>" for each solid.
   void register_state(StateRegistry& reg) override;
@@ -101,6 +112,7 @@ class Solids : public Component {
 
  private:
   std::vector<std::unique_ptr<Solid>> solids_;
+  Grid grid_;
   double rho_f_;
   Field sxx_, sxy_, syy_;  ///< blended solid stress (global), if any solid is elastic
   double elastic_energy_ = 0.0;

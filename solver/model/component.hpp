@@ -22,6 +22,7 @@
 // factory), so adding one takes its own files and one registration - or add_component()
 // from outside, as the tests do.
 #include <array>
+#include <deque>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -112,6 +113,20 @@ struct ComponentFile {
   std::function<void(const Simulation&, int frame, std::vector<std::vector<double>>& rows)> rows;
 };
 
+/// The cell fields a VTK frame gets from the components (Component::frame_fields): scalars
+/// and vectors of nx x ny fields, each named; a component's state field by its address, a
+/// field computed for the frame alone in `owned`, which lives until the frame is written.
+struct FrameFields {
+  struct Vector {
+    std::string name;
+    const Field* x;
+    const Field* y;
+  };
+  std::vector<std::pair<std::string, const Field*>> scalars;
+  std::vector<Vector> vectors;
+  std::deque<Field> owned;
+};
+
 class Component {
  public:
   virtual ~Component() = default;
@@ -138,7 +153,8 @@ class Component {
   /// Its diagnostics.csv columns (fixed for the run) and their values for the current state.
   virtual std::vector<std::string> columns() const { return {}; }
   virtual void values(const Simulation&, std::vector<double>& /*out*/) const {}
-  /// Where they go: right after the built-in column of this name (solver/model/diagnostics.cpp),
+  /// Where they go: right after the built-in column of this name (solver/model/diagnostics.cpp)
+  /// or the column of this name of a component placed before it (the solids' total_energy),
   /// or (null, or a column this run does not write) after every built-in column, in the
   /// order the components were added.
   virtual const char* columns_after() const { return nullptr; }
@@ -157,9 +173,9 @@ class Component {
   /// step then call it at StepPoint::Rates, and the implicit velocity solve keeps these cells
   /// fixed and calls it at StepPoint::HeldSolved. Fixed for the run (null or not).
   virtual const std::vector<std::array<int, 3>>* held_cells() const { return nullptr; }
-  /// Its cell fields (name, nx x ny field) written into every VTK frame after the built-in
-  /// ones (solver/app/run.cpp).
-  virtual std::vector<std::pair<std::string, const Field*>> frame_fields() const { return {}; }
+  /// Its cell fields (nx x ny) for a VTK frame, added to `out`: written after the built-in
+  /// ones (solver/app/run.cpp), the components in the order added.
+  virtual void frame_fields(FrameFields& /*out*/) const {}
   /// Whether it takes the velocity step of eq. (5.2), u** from u* and the step's force
   /// (Simulation::step_force_x, _y: viscous plus solid stress), in place of the Simulation's
   /// explicit forward-Euler update (the implicit velocity step,

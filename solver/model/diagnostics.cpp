@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <functional>
 #include <limits>
 
 #include "solver/model/rigid_body.hpp"
@@ -22,23 +23,22 @@ struct RowState {
 
 struct Column {
   const char* name;
-  bool needs_solids;  ///< only written when the scene has solids
   double (*value)(const RowState&);
 };
 
 // clang-format off
 const Column kColumns[] = {
-    {"step",               false, [](const RowState& r) { return double(r.sim.steps()); }},
-    {"time",               false, [](const RowState& r) { return r.sim.time(); }},
-    {"dt",                 false, [](const RowState& r) { return r.last_dt; }},
-    {"kinetic_energy",     false, [](const RowState& r) { return r.kinetic_energy; }},
-    {"max_div_face",       false, [](const RowState& r) { return r.sim.max_face_divergence(); }},
-    {"poisson_iterations", false, [](const RowState& r) { return double(r.sim.last_poisson_iterations()); }},
-    {"poisson_residual",   false, [](const RowState& r) { return r.sim.last_poisson_residual(); }},
-    {"wall_time",          false, [](const RowState& r) { return r.wall_s; }},
-    {"elastic_energy",     true,  [](const RowState& r) { return r.sim.elastic_energy(); }},
-    {"total_energy",       true,  [](const RowState& r) { return r.kinetic_energy + r.sim.elastic_energy(); }},
+    {"step",               [](const RowState& r) { return double(r.sim.steps()); }},
+    {"time",               [](const RowState& r) { return r.sim.time(); }},
+    {"dt",                 [](const RowState& r) { return r.last_dt; }},
+    {"kinetic_energy",     [](const RowState& r) { return r.kinetic_energy; }},
+    {"max_div_face",       [](const RowState& r) { return r.sim.max_face_divergence(); }},
+    {"poisson_iterations", [](const RowState& r) { return double(r.sim.last_poisson_iterations()); }},
+    {"poisson_residual",   [](const RowState& r) { return r.sim.last_poisson_residual(); }},
+    {"wall_time",          [](const RowState& r) { return r.wall_s; }},
 };
+// (then, with solids, elastic_energy and total_energy: the solids' component's columns, placed
+// right after wall_time, solver/components/solids.hpp; contact's after those)
 
 /// The columns of solids.csv after step, time and solid: one row per solid and output step.
 struct SolidColumn {
@@ -80,9 +80,9 @@ const SolidColumn kForceColumns[] = {
 /// the last iteration's relative velocity change, the multigrid cycles of all the step's passes
 /// and, of them, the velocity solves' cycles.
 const Column kPicardColumns[] = {
-    {"picard_change", false, [](const RowState& r) { return r.sim.picard_change(); }},
-    {"picard_cycles", false, [](const RowState& r) { return double(r.sim.picard_cycles()); }},
-    {"picard_velocity_cycles", false, [](const RowState& r) { return double(r.sim.picard_velocity_cycles()); }},
+    {"picard_change", [](const RowState& r) { return r.sim.picard_change(); }},
+    {"picard_cycles", [](const RowState& r) { return double(r.sim.picard_cycles()); }},
+    {"picard_velocity_cycles", [](const RowState& r) { return double(r.sim.picard_velocity_cycles()); }},
 };
 
 bool has_force(const Simulation& sim, int k) { return sim.solid_load(k) != nullptr; }
@@ -94,30 +94,37 @@ bool any_force(const Simulation& sim) {
 }
 
 /// The parts of a row in order: every built-in column (as `builtin` takes them), each
-/// followed by the components whose `after` names it, then the components placed after
-/// none (solver/model/component.hpp: columns_after, solid_columns_after), in the order added.
+/// followed by the components whose `after` names it, each of those followed in turn by the
+/// components whose `after` names one of its own columns (`names`), then the components
+/// placed after none (solver/model/component.hpp: columns_after, solid_columns_after), in the
+/// order added.
 template <class Builtin, class Comp>
 void in_row_order(const Simulation& sim, const std::vector<const char*>& builtin_names, Builtin&& builtin,
-                  const char* (Component::*after)() const, Comp&& comp) {
+                  const char* (Component::*after)() const, std::vector<std::string> (Component::*names)() const,
+                  Comp&& comp) {
   std::vector<const Component*> placed;
+  const auto is_placed = [&](const Component* c) { return std::find(placed.begin(), placed.end(), c) != placed.end(); };
+  const std::function<void(const char*)> follow = [&](const char* column) {
+    for (const auto& c : sim.components()) {
+      const char* a = ((*c).*after)();
+      if (!a || std::strcmp(a, column) != 0 || is_placed(c.get())) continue;
+      comp(*c);
+      placed.push_back(c.get());
+      for (const std::string& own : ((*c).*names)()) follow(own.c_str());
+    }
+  };
   for (std::size_t n = 0; n < builtin_names.size(); ++n) {
     builtin(n);
-    for (const auto& c : sim.components())
-      if (const char* a = ((*c).*after)(); a && std::strcmp(a, builtin_names[n]) == 0) {
-        comp(*c);
-        placed.push_back(c.get());
-      }
+    follow(builtin_names[n]);
   }
   for (const auto& c : sim.components())
-    if (std::find(placed.begin(), placed.end(), c.get()) == placed.end()) comp(*c);
+    if (!is_placed(c.get())) comp(*c);
 }
 
 /// The built-in diagnostics.csv columns of this run, in order.
 std::vector<const Column*> global_columns(const Simulation& sim) {
-  const bool solids = !sim.solids().empty();
   std::vector<const Column*> cols;
-  for (const Column& col : kColumns)
-    if (!col.needs_solids || solids) cols.push_back(&col);
+  for (const Column& col : kColumns) cols.push_back(&col);
   if (sim.config().solid_picard > 0)
     for (const Column& col : kPicardColumns) cols.push_back(&col);
   return cols;
@@ -137,7 +144,7 @@ std::vector<std::string> diagnostic_columns(const Simulation& sim) {
   std::vector<std::string> c;
   in_row_order(
       sim, names_of(cols), [&](std::size_t n) { c.push_back(cols[n]->name); }, &Component::columns_after,
-      [&](const Component& comp) {
+      &Component::columns, [&](const Component& comp) {
         for (const std::string& name : comp.columns()) c.push_back(name);
       });
   return c;
@@ -149,7 +156,7 @@ std::vector<double> diagnostic_values(const Simulation& sim, double last_dt, dou
   std::vector<double> v;
   in_row_order(
       sim, names_of(cols), [&](std::size_t n) { v.push_back(cols[n]->value(r)); }, &Component::columns_after,
-      [&](const Component& comp) { comp.values(sim, v); });
+      &Component::columns, [&](const Component& comp) { comp.values(sim, v); });
   return v;
 }
 
@@ -188,7 +195,7 @@ std::vector<std::string> solid_columns(const Simulation& sim) {
   const auto parts = solid_parts(sim);
   in_row_order(
       sim, names_of(parts), [&](std::size_t n) { c.push_back(parts[n].col->name); }, &Component::solid_columns_after,
-      [&](const Component& comp) {
+      &Component::solid_columns, [&](const Component& comp) {
         for (const std::string& name : comp.solid_columns()) c.push_back(name);
       });
   return c;
@@ -213,7 +220,8 @@ std::vector<std::vector<double>> solid_values(const Simulation& sim) {
           const bool written = p.rows == SolidPart::All || force;
           v.push_back(written ? p.col->value(r, k) : nan);
         },
-        &Component::solid_columns_after, [&](const Component& comp) { comp.solid_values(sim, k, v); });
+        &Component::solid_columns_after, &Component::solid_columns,
+        [&](const Component& comp) { comp.solid_values(sim, k, v); });
   }
   return rows;
 }
