@@ -1,6 +1,7 @@
 #pragma once
-// One time step over the state: Algorithm 1 of Jain & Mani (fluid steps 4-9 here; solids
-// add steps 1-3). The run loop, output and diagnostics are in solver/app/run.hpp.
+// One time step over the state: Algorithm 1 of Jain & Mani (fluid steps 4-9 here; the
+// solids' steps 1-3 and their stress are the solids' component's, solver/components/solids.hpp,
+// called at their fixed places). The run loop, output and diagnostics are in solver/app/run.hpp.
 #include <array>
 #include <functional>
 #include <memory>
