@@ -175,7 +175,7 @@ std::shared_ptr<const ComponentOptions> parse_tracers(const TomlTable& top, cons
 
 
 std::unique_ptr<Component> make_tracers(const ComponentOptions& o, Simulation& sim) {
-  const Sides sides = face_sides(sim.config().bc);
+  const Sides& sides = sim.sides();  // the Simulation's, built once
   return std::make_unique<Tracers>(sim.grid(), tracer_seeds(static_cast<const TracerOptions&>(o).seeds),
                                    sides.periodic_x(), sides.periodic_y());
 }
