@@ -8,9 +8,11 @@
 //    extrapolate it into the band (Algorithm 2), rebuild phi = phi0(xi) (eq. 3.2),
 //    reinitialised by fast marching; the solids run concurrently, one per thread;
 //  * step 3, `blend`: the mixture's density and viscosity (eq. 3.6);
-//  * eq. (5.2), `stress_force`: the neo-Hookean stress of every solid, blended into the
-//    global tensor in conservative form, and its divergence as a force;
+//  * eq. (5.2), `stress_force`: every solid's stress (its constitutive law,
+//    kernels/constitutive.hpp), blended into the global tensor, and its divergence as a force;
 //  * section 4, `explicit_dt`: the shear-wave limit of the explicit stress.
+// Its output is its own: the diagnostics columns elastic_energy and total_energy, and the
+// VTK fields phi, xi, normal_stress and stress_*.
 // Its checkpoint records are those the Simulation wrote for the solids before they were a
 // component (the count, then each solid's window and arrays); the Simulation registers
 // them where they were (register_state), so checkpoints keep their layout. The blended
