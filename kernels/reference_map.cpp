@@ -1,5 +1,7 @@
 #include "kernels/reference_map.hpp"
 
+#include <cmath>
+
 #include "kernels/advection.hpp"
 #include "kernels/loop.hpp"
 
@@ -20,6 +22,14 @@ inline double van_leer_face(double quu, double qu, double qd) {
   return e * d > 0.0 ? qu + e * d / (e + d) : qu;
 }
 
+/// minmod-limited face value, q_f = qu + 0.5 minmod(e, d) with e = qu - quu, d = qd - qu:
+/// the smaller slope when both have one sign, else qu (r = 1 gives the central value)
+inline double minmod_face(double quu, double qu, double qd) {
+  const double e = qu - quu, d = qd - qu;
+  if (!(e * d > 0.0)) return qu;
+  return qu + 0.5 * (std::abs(e) < std::abs(d) ? e : d);
+}
+
 /// kCell: (uf, vf) are the cell velocities, read at the cell for both of its faces
 /// (XiVelocity::Cell); else the face velocities.
 template <XiFlux F, bool kCell>
@@ -36,7 +46,9 @@ void rhs_impl(CView xi_x, CView xi_y, CView phi, CView uf, CView vf, int ni, int
       // the flow crosses the face from i to i + o when vel * o > 0
       const bool out = (di + dj) * vel >= 0.0;
       auto face = [](double a, double b, double c) {
-        return F == XiFlux::Superbee ? superbee_face(a, b, c) : van_leer_face(a, b, c);
+        if constexpr (F == XiFlux::Superbee) return superbee_face(a, b, c);
+        else if constexpr (F == XiFlux::Minmod) return minmod_face(a, b, c);
+        else return van_leer_face(a, b, c);
       };
       const double f = out ? face(q(i - di, j - dj), qc, qn) : face(q(i + 2 * di, j + 2 * dj), qn, qc);
       return f - qc;
@@ -70,6 +82,7 @@ void reference_map_rhs(CView xi_x, CView xi_y, CView phi, CView uf, CView vf, in
     case XiFlux::Central: rhs_impl<XiFlux::Central, false>(xi_x, xi_y, phi, uf, vf, ni, nj, i0, j0, dx, kx, ky); break;
     case XiFlux::Superbee: rhs_impl<XiFlux::Superbee, false>(xi_x, xi_y, phi, uf, vf, ni, nj, i0, j0, dx, kx, ky); break;
     case XiFlux::VanLeer: rhs_impl<XiFlux::VanLeer, false>(xi_x, xi_y, phi, uf, vf, ni, nj, i0, j0, dx, kx, ky); break;
+    case XiFlux::Minmod: rhs_impl<XiFlux::Minmod, false>(xi_x, xi_y, phi, uf, vf, ni, nj, i0, j0, dx, kx, ky); break;
   }
 }
 
@@ -79,6 +92,7 @@ void reference_map_rhs_cell(CView xi_x, CView xi_y, CView phi, CView u, CView v,
     case XiFlux::Central: rhs_impl<XiFlux::Central, true>(xi_x, xi_y, phi, u, v, ni, nj, i0, j0, dx, kx, ky); break;
     case XiFlux::Superbee: rhs_impl<XiFlux::Superbee, true>(xi_x, xi_y, phi, u, v, ni, nj, i0, j0, dx, kx, ky); break;
     case XiFlux::VanLeer: rhs_impl<XiFlux::VanLeer, true>(xi_x, xi_y, phi, u, v, ni, nj, i0, j0, dx, kx, ky); break;
+    case XiFlux::Minmod: rhs_impl<XiFlux::Minmod, true>(xi_x, xi_y, phi, u, v, ni, nj, i0, j0, dx, kx, ky); break;
   }
 }
 

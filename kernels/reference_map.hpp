@@ -8,8 +8,9 @@
 //   [uf_{i+1/2} (q_{i+1} - q_i) + uf_{i-1/2} (q_i - q_{i-1})] / (2 dx) + (same in y),
 // a second-order central scheme that is exact for affine q when u_f is the exact velocity
 // of a rigid motion (the Zalesak test measures only the time-integration error).
-// With XiFlux::Superbee or XiFlux::VanLeer the face values are limited upwind (Superbee as
-// in kernels/advection.hpp, or van Leer's smooth limiter) in the same form,
+// With XiFlux::Superbee, XiFlux::VanLeer or XiFlux::Minmod the face values are limited upwind
+// (Superbee as in kernels/advection.hpp, van Leer's smooth limiter, or minmod, the most
+// dissipative of the second-order TVD limiters: Sweby 1984) in the same form,
 // [ue (q_e - q_i) + uw (q_i - q_w)] / dx: still exact for affine q (r = 1 gives the central
 // face value), first order at grid-scale oscillations, which they damp. They read two ghost
 // layers of xi.
@@ -34,7 +35,7 @@
 
 namespace refmap {
 
-enum class XiFlux { Central, Superbee, VanLeer };
+enum class XiFlux { Central, Superbee, VanLeer, Minmod };
 enum class XiVelocity { Face, Cell };
 
 /// How far from a cell of Omega_S (phi < 0) reference_map_rhs reads xi, in cells along a grid

@@ -127,8 +127,8 @@ TEST(Advection, HybridFluxIsCentralOrSuperbeePerFace) {
     for (int i = 0; i < nx; ++i) EXPECT_EQ(ly(i, j), 0.0);  // y-stencils are one column: uniform
 }
 
-// The reference-map advection (kernels/reference_map.hpp, eq. 3.3) with central, Superbee
-// and van Leer face values: all exact for an affine xi under a non-uniform but divergence-free
+// The reference-map advection (kernels/reference_map.hpp, eq. 3.3) with central, Superbee,
+// van Leer and minmod face values: all exact for an affine xi under a non-uniform but divergence-free
 // face velocity (rigid rotation sampled on the faces); on an odd-even perturbation of xi the
 // central form has no effect (its increments cancel), while the limited ones remove variance:
 // sum_i delta_i k_i < 0, i.e. d/dt of sum delta^2 is negative at first order.
@@ -148,9 +148,12 @@ TEST(ReferenceMapAdvection, AffineExactAndLimitedFluxesDampOddEvenMode) {
     a = 0.3 + 1.2 * x - 0.4 * y;
     b = -0.1 + 0.5 * x + 0.9 * y;
   };
-  for (XiFlux fl : {XiFlux::Central, XiFlux::Superbee, XiFlux::VanLeer}) {
+  for (XiFlux fl : {XiFlux::Central, XiFlux::Superbee, XiFlux::VanLeer, XiFlux::Minmod}) {
     const bool sb = fl != XiFlux::Central;
-    const char* name = fl == XiFlux::Central ? "central" : fl == XiFlux::Superbee ? "superbee" : "van Leer";
+    const char* name = fl == XiFlux::Central    ? "central"
+                       : fl == XiFlux::Superbee ? "superbee"
+                       : fl == XiFlux::VanLeer  ? "van Leer"
+                                                : "minmod";
     for (int j = -2; j < n + 2; ++j)
       for (int i = -2; i < n + 2; ++i) affine(i, j, xi_x(i, j), xi_y(i, j));
     reference_map_rhs(xi_x.view(), xi_y.view(), phi.view(), uf.view(), vf.view(), n, n, 0, 0, dx,
@@ -216,7 +219,7 @@ TEST(ReferenceMapAdvection, CellVelocityExactForAffineAndSeesTheOddEvenVelocity)
     a = 0.3 + 1.2 * x - 0.4 * y;
     b = -0.1 + 0.5 * x + 0.9 * y;
   };
-  for (XiFlux fl : {XiFlux::Central, XiFlux::Superbee, XiFlux::VanLeer}) {
+  for (XiFlux fl : {XiFlux::Central, XiFlux::Superbee, XiFlux::VanLeer, XiFlux::Minmod}) {
     for (int j = -2; j < n + 2; ++j)
       for (int i = -2; i < n + 2; ++i) affine(i, j, xi_x(i, j), xi_y(i, j));
     reference_map_rhs_cell(xi_x.view(), xi_y.view(), phi.view(), u.view(), v.view(), n, n, 0, 0, dx, kx.view(),
@@ -241,7 +244,7 @@ TEST(ReferenceMapAdvection, CellVelocityExactForAffineAndSeesTheOddEvenVelocity)
   for (int j = 0; j < n; ++j)
     for (int i = 0; i <= n; ++i) uf(i, j) = 0.5 * (u(i - 1, j) + u(i, j));  // = 0
   vf.fill(0.0);
-  for (XiFlux fl : {XiFlux::Central, XiFlux::Superbee, XiFlux::VanLeer}) {
+  for (XiFlux fl : {XiFlux::Central, XiFlux::Superbee, XiFlux::VanLeer, XiFlux::Minmod}) {
     reference_map_rhs_cell(xi_x.view(), xi_y.view(), phi.view(), u.view(), v.view(), n, n, 0, 0, dx, kx.view(),
                            ky.view(), fl);
     double err = 0.0;

@@ -181,9 +181,9 @@ struct SolidsOptions {
   /// in cells (zero where a cell's stencil reaches an extrapolated cell, phi >= -dx)
   double variational_width = 1.0;
   StressBlend stress_blend = StressBlend::Volume;  ///< solids.stress_blend (cell, conservative form)
-  /// face values of xi in its advection (eq. 3.3): Central (the paper's), VanLeer or
-  /// Superbee (limited upwind: damp grid-scale xi oscillations where the solid moves; all
-  /// three exact for an affine xi; see docs/reference_map.md)
+  /// face values of xi in its advection (eq. 3.3): Central (the paper's), VanLeer, Superbee
+  /// or Minmod (limited upwind: damp grid-scale xi oscillations where the solid moves; all
+  /// four exact for an affine xi; see docs/reference_map.md)
   XiFlux xi_advection = XiFlux::VanLeer;
   /// the velocity that carries xi (eq. 3.3): Face, the projected face velocities (default),
   /// or Cell, the cell-centred velocity the solid stress accelerates: with face velocities

@@ -123,7 +123,8 @@ std::span<const OptionName<PicardForce>> option_names(PicardForce) {
 
 std::span<const OptionName<XiFlux>> option_names(XiFlux) {
   static const OptionName<XiFlux> n[] = {
-      {XiFlux::Central, "central"}, {XiFlux::Superbee, "superbee"}, {XiFlux::VanLeer, "vanleer"}};
+      {XiFlux::Central, "central"}, {XiFlux::Superbee, "superbee"}, {XiFlux::VanLeer, "vanleer"},
+      {XiFlux::Minmod, "minmod"}};
   return span_of(n);
 }
 

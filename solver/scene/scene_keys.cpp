@@ -287,7 +287,7 @@ std::vector<KeyDef> build_keys() {
                           "cell stress in the conservative form only"),
       choice<XiFlux>("solids", "xi_advection", dso.xi_advection,
                      "face values of ξ in its advection (eq. 3.3): second-order central (the paper's) or "
-                     "Superbee / van Leer limited upwind"),
+                     "Superbee / van Leer / minmod limited upwind"),
       choice<XiVelocity>("solids", "xi_velocity", dso.xi_velocity,
                          "the velocity that carries ξ (eq. 3.3): the projected face velocities, or the cell-centred "
                          "velocity the solid stress accelerates (with face velocities the velocity's shortest waves "
