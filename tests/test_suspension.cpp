@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/components/wall_stress.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/model/simulation.hpp"
 #include "solver/scene/suspension.hpp"
@@ -201,7 +202,7 @@ double eta_of_one_disc(double mu_s, int nx, double t_end, double transition = 3.
     sim.step();
     if (sim.time() <= t0) continue;
     v.clear();
-    for (const auto& c : sim.components()) c->values(sim, v);
+    if (const WallStress* w = sim.component<WallStress>()) w->values(sim, v);  // bottom, top, eta_r
     const double dt = sim.time() - std::max(before, t0);
     sum += v.at(2) * dt;
     span += dt;
