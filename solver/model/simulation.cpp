@@ -12,7 +12,6 @@
 #include "kernels/loop.hpp"
 #include "kernels/projection.hpp"
 #include "kernels/rk4.hpp"
-#include "kernels/solid_stress.hpp"
 #include "kernels/verlet.hpp"
 #include "kernels/viscous.hpp"
 #include "solver/model/boundary.hpp"
