@@ -11,8 +11,8 @@
 //                          bounds the time step (section 4); 2 mu_s at rest
 // The kernels are templates on the model, so their inner loops stay inlined and vectorised.
 // Adding a model: one header kernels/constitutive_<name>.hpp, its include, enum value and
-// case below, and its scene value in solver/scene/option_names.cpp (for new constants: SolidSpec
-// fields in solver/model/config.hpp, their keys in solver/scene/scene_keys.cpp, read in solver/scene/scene.cpp).
+// case below, and its scene value in solver/components/solids_keys.cpp (for new constants: SolidSpec
+// fields in solver/model/config.hpp, their keys and their reading in solver/components/solids_keys.cpp).
 #include <concepts>
 #include <utility>
 

@@ -60,12 +60,55 @@ TEST(ComponentKinds, KeysAreInTheTableOnceWhereTheKindSays) {
   const auto at = [&](const char* name) { return std::find(tables.begin(), tables.end(), name) - tables.begin(); };
   EXPECT_EQ(at("tracers"), at("probe") + 1);
   EXPECT_EQ(at("solid.actuation"), at("solid") + 1);
-  // the registration order is the order of the hooks: actuation before the tracers
-  // (contact's kind is first: it only reads [contact], the Simulation adds the component)
-  ASSERT_GE(component_kinds().size(), 6u);
-  EXPECT_EQ(component_kinds()[0].name, "contact");
-  EXPECT_EQ(component_kinds()[1].name, "actuation");
-  EXPECT_EQ(component_kinds()[2].name, "tracers");
+  // the solids' tables where the core's were, a rigid body's keys right after a solid's
+  // initial velocity, the implicit step's after the core's choice of the step
+  EXPECT_GT(at("solids"), at("tracers"));
+  EXPECT_EQ(at("solid"), at("solids") + 1);
+  EXPECT_EQ(at("suspension"), at("solid.actuation") + 1);
+  EXPECT_EQ(index_of("solid", "motion"), index_of("solid", "omega") + 1);
+  EXPECT_EQ(index_of("solid", "clamp"), index_of("solid", "pivot") + 1);
+  EXPECT_EQ(index_of("time", "solid_implicit_k"), index_of("time", "verlet_project_drift") + 1);
+  EXPECT_EQ(index_of("time", "implicit_tol"), index_of("time", "solid_rate_sweeps") + 1);
+  // the registration order is the order of the hooks: actuation before the tracers. The
+  // first four kinds only read keys (the Simulation adds their components): the solids' and
+  // the implicit step's into the Config, contact's into its options
+  ASSERT_GE(component_kinds().size(), 9u);
+  EXPECT_EQ(component_kinds()[0].name, "solids");
+  EXPECT_EQ(component_kinds()[1].name, "rigid_bodies");
+  EXPECT_EQ(component_kinds()[2].name, "implicit_velocity_step");
+  EXPECT_EQ(component_kinds()[3].name, "contact");
+  EXPECT_EQ(component_kinds()[4].name, "actuation");
+  EXPECT_EQ(component_kinds()[5].name, "tracers");
+}
+
+// Each key has one home: the solids' shape and shared options are the solids' kind's, a
+// rigid body's motion the rigid bodies', the implicit solve's tolerance the implicit step's
+// (none of them is the core's any more), and the kinds that write the Config have no options
+// of their own.
+TEST(ComponentKinds, TheSolidsRigidBodiesAndImplicitStepDeclareTheirOwnKeys) {
+  const auto declares = [](const char* kind, const char* table, const char* name) {
+    for (const KeyDef& k : component_kind(kind).keys)
+      if (k.table == table && k.name == name) return true;
+    return false;
+  };
+  EXPECT_TRUE(declares("solids", "solid", "shape"));
+  EXPECT_TRUE(declares("solids", "solids", "band"));
+  EXPECT_FALSE(declares("solids", "solid", "motion"));
+  EXPECT_TRUE(declares("rigid_bodies", "solid", "motion"));
+  EXPECT_TRUE(declares("rigid_bodies", "solid", "clamp"));
+  EXPECT_TRUE(declares("implicit_velocity_step", "time", "implicit_tol"));
+  EXPECT_FALSE(declares("implicit_velocity_step", "time", "solid_stress"));  // the core's choice of the step
+  for (const char* kind : {"solids", "implicit_velocity_step"}) {
+    EXPECT_NE(component_kind(kind).configure, nullptr) << kind;
+    EXPECT_EQ(component_kind(kind).parse, nullptr) << kind;
+  }
+  // a scene's solids and implicit constants still reach the Config through them
+  const Config c = load_scene_string(
+      box_scene(16, kWalls, "[solids]\nband = 7.0\n" + disc_toml("a", 0.5, 0.5, 0.2, 1.0, "")), "own_keys.toml", {"time.solid_stress=\"semi_implicit\"", "time.implicit_tol=1e-7"});
+  ASSERT_EQ(c.solids.size(), 1u);
+  EXPECT_EQ(c.solids[0].name, "a");
+  EXPECT_EQ(c.solid_opt.band, 7.0);
+  EXPECT_EQ(c.implicit_tol, 1e-7);
 }
 
 TEST(ComponentKinds, OptionsAreParsedOnceIntoTypes) {

@@ -21,14 +21,37 @@
 // solve holds Simulation::held_cells, solver/components/implicit_velocity_step.hpp) and the
 // solids.csv columns fx, fy, torque, shared with the control-volume forces
 // (solver/model/diagnostics.cpp); docs/components.md.
+// Its kind (rigid_bodies_kind, rigid_bodies.cpp) declares the rigid bodies' keys in
+// `[[solid]]` (motion, forcing, path, pivot, clamp); the solids' parser
+// (solver/components/solids_keys.cpp) calls the readers below at their place in each table.
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "solver/io/enum_names.hpp"
 #include "solver/model/component.hpp"
+#include "solver/model/config.hpp"
 #include "solver/model/rigid_body.hpp"
 
 namespace refmap {
+
+class TomlTable;
+
+// the scene names of the rigid bodies' options
+std::span<const OptionName<SolidMotion>> option_names(SolidMotion);
+std::span<const OptionName<BodyForcing>> option_names(BodyForcing);
+std::span<const OptionName<ForcingInterpolation>> option_names(ForcingInterpolation);
+
+/// Solid `s`'s motion and, for a rigid body, its forcing (before its material: a rigid body
+/// takes no `mu_s`). Throws SceneError on bad input.
+void parse_body_motion(const TomlTable& s, SolidSpec& sp);
+/// A rigid body's initial velocity from its motion (after the solid's own initial velocity,
+/// whose keys it refuses), its path or pivot, and a soft solid's `clamp`; (cx, cy) is the
+/// point its rotation refers to (the centre, or the bounding box's for a tabulated shape).
+void parse_body_velocity(const TomlTable& s, SolidSpec& sp, const Config& cfg, double cx, double cy);
+/// Every clamped soft solid's body, by name: it must be a rigid solid of the scene.
+void resolve_clamps(const TomlTable& top, std::vector<SolidSpec>& solids);
 
 class RigidBodiesComponent : public Component {
  public:

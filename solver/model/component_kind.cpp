@@ -8,10 +8,15 @@ namespace refmap {
 // The registered kinds, ONE LINE EACH: a new component adds X(name) here and defines
 // `ComponentKind name_kind()` in its own .cpp. The order is that of their hooks at one step
 // point: actuation first (the stress of a step needs A(t + dt)), then the tracers (the
-// velocity of the step's start), the markers. Contact's kind only reads [contact] (first,
-// as the core did before the others); its component is added by the Simulation, before
-// all of these (solver/components/contact_component.hpp).
+// velocity of the step's start), the markers. The first four kinds only read keys (their
+// components are made by the Simulation, before all of these): the solids' and the implicit
+// step's into the Config (ComponentKind::configure; the rigid bodies' keys are read by the
+// solids' parser, at their place in each [[solid]]), contact's into its options
+// (solver/components/contact_component.hpp).
 #define REFMAP_COMPONENT_KINDS(X) \
+  X(solids)                       \
+  X(rigid_bodies)                 \
+  X(implicit_velocity_step)       \
   X(contact)                      \
   X(actuation)                    \
   X(tracers)                      \

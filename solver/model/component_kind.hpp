@@ -6,7 +6,8 @@
 //  * its scene keys, declared as data (KeyDef, solver/io/key_def.hpp): `refmap keys` and
 //    scenes/README.md list them with the core's, and the loader allows them;
 //  * a parser from the scene to its own typed options (strings become enums and numbers
-//    once, bad input is a SceneError naming the key: exit 2);
+//    once, bad input is a SceneError naming the key: exit 2), or, for the solids and the
+//    implicit step, whose options the core reads too, one into the core's Config;
 //  * a factory that makes the component for a Simulation from those options.
 // Order: components are added in registration order, which is the order of their hooks at
 // one step point (solver/model/component.hpp) and the order of their diagnostics columns.
@@ -46,6 +47,13 @@ struct ComponentKind {
   /// parsed (the grid, the boundaries, the solids). Returns its options, or null when the
   /// scene does not use it. Throws SceneError (TomlTable::fail) on bad input.
   std::shared_ptr<const ComponentOptions> (*parse)(const TomlTable& top, const Config& cfg) = nullptr;
+  /// Instead of (or besides) `parse`, for a kind whose options the core itself reads: the
+  /// solids (their list and shared options: the loader's start checks, contact, the markers
+  /// and the Simulation use them) and the implicit velocity step (its constants, read by the
+  /// Simulation's limits and passes). Reads the kind's keys into `cfg`; called in
+  /// registration order after the core's tables and before any kind's `parse`. Throws
+  /// SceneError on bad input.
+  void (*configure)(const TomlTable& top, Config& cfg) = nullptr;
   /// Makes the component for `sim` (at the end of its constructor: the flow, the solids
   /// and the boundaries are built) from the options parse returned; null: nothing to add
   /// for this run (e.g. body forces without a body).

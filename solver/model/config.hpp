@@ -1,8 +1,9 @@
 #pragma once
 // Everything a scene file says, after validation: plain data (it includes only io/, pressure/
-// and model/ headers: tests/test_layout.cpp). solver/scene/scene.cpp fills it from TOML;
+// and model/ headers: tests/test_layout.cpp). solver/scene/scene.cpp fills it from TOML, with
+// the kinds that configure it (the solids' and the implicit step's keys, solver/components/);
 // the time loop (solver/model/simulation.cpp) only reads it. The member initialisers below are
-// the defaults of the scene keys: the key table (solver/scene/scene_keys.cpp) reads them from a
+// the defaults of the scene keys: the key tables (solver/scene/scene_keys.cpp, the components' kinds) read them from a
 // default-constructed Config, so the loader and scenes/README.md use these values.
 #include <array>
 #include <memory>

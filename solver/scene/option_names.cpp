@@ -39,55 +39,6 @@ std::span<const OptionName<InitialKind>> option_names(InitialKind) {
   return span_of(n);
 }
 
-std::span<const OptionName<SolidVelocity>> option_names(SolidVelocity) {
-  static const OptionName<SolidVelocity> n[] = {{SolidVelocity::Rigid, "rigid"}, {SolidVelocity::Fluid, "fluid"}};
-  return span_of(n);
-}
-
-std::span<const OptionName<SolidMotion>> option_names(SolidMotion) {
-  static const OptionName<SolidMotion> n[] = {{SolidMotion::Free, "free"},
-                                              {SolidMotion::Fixed, "fixed"},
-                                              {SolidMotion::Prescribed, "prescribed"},
-                                              {SolidMotion::Pinned, "pinned"}};
-  return span_of(n);
-}
-
-std::span<const OptionName<BodyForcing>> option_names(BodyForcing) {
-  static const OptionName<BodyForcing> n[] = {{BodyForcing::Diffuse, "diffuse"},
-                                              {BodyForcing::Interpolated, "interpolated"},
-                                              {BodyForcing::Sharp, "sharp"}};
-  return span_of(n);
-}
-
-std::span<const OptionName<ForcingInterpolation>> option_names(ForcingInterpolation) {
-  static const OptionName<ForcingInterpolation> n[] = {{ForcingInterpolation::Linear, "linear"},
-                                                       {ForcingInterpolation::Quadratic, "quadratic"}};
-  return span_of(n);
-}
-
-std::span<const OptionName<ExtrapolationMethod>> option_names(ExtrapolationMethod) {
-  static const OptionName<ExtrapolationMethod> n[] = {{ExtrapolationMethod::Lsq, "lsq"},
-                                                      {ExtrapolationMethod::Pde, "pde"}};
-  return span_of(n);
-}
-
-std::span<const OptionName<ConstitutiveLaw>> option_names(ConstitutiveLaw) {
-  static const OptionName<ConstitutiveLaw> n[] = {{ConstitutiveLaw::NeoHookean, "neo_hookean"},
-                                                  {ConstitutiveLaw::StrainStiffening, "strain_stiffening"}};
-  return span_of(n);
-}
-
-std::span<const OptionName<StressForm>> option_names(StressForm) {
-  static const OptionName<StressForm> n[] = {{StressForm::Cell, "cell"}, {StressForm::Face, "face"},
-                                              {StressForm::Variational, "variational"}};
-  return span_of(n);
-}
-
-std::span<const OptionName<StressBlend>> option_names(StressBlend) {
-  static const OptionName<StressBlend> n[] = {{StressBlend::Volume, "volume"}, {StressBlend::Specific, "specific"}};
-  return span_of(n);
-}
-
 std::span<const OptionName<JumpFlux>> option_names(JumpFlux) {
   static const OptionName<JumpFlux> n[] = {{JumpFlux::Superbee, "superbee"}, {JumpFlux::Same, "same"}};
   return span_of(n);
@@ -113,23 +64,6 @@ std::span<const OptionName<SolidStressTime>> option_names(SolidStressTime) {
 std::span<const OptionName<ElasticCoupling>> option_names(ElasticCoupling) {
   static const OptionName<ElasticCoupling> n[] = {{ElasticCoupling::SymplecticEuler, "symplectic_euler"},
                                                   {ElasticCoupling::Verlet, "verlet"}};
-  return span_of(n);
-}
-
-std::span<const OptionName<PicardForce>> option_names(PicardForce) {
-  static const OptionName<PicardForce> n[] = {{PicardForce::New, "new"}, {PicardForce::Trapezoidal, "trapezoidal"}};
-  return span_of(n);
-}
-
-std::span<const OptionName<XiFlux>> option_names(XiFlux) {
-  static const OptionName<XiFlux> n[] = {
-      {XiFlux::Central, "central"}, {XiFlux::Superbee, "superbee"}, {XiFlux::VanLeer, "vanleer"},
-      {XiFlux::Minmod, "minmod"}};
-  return span_of(n);
-}
-
-std::span<const OptionName<XiVelocity>> option_names(XiVelocity) {
-  static const OptionName<XiVelocity> n[] = {{XiVelocity::Face, "face"}, {XiVelocity::Cell, "cell"}};
   return span_of(n);
 }
 

@@ -5,8 +5,11 @@
 // (solver/scene/scene_keys.cpp), hands out typed values with the table's defaults, type, range
 // and choice checks, and rejects keys that are not in the table. Adding a key = one entry
 // in scene_keys.cpp plus one getter call here; adding a table = one TableDef plus a
-// parse_xxx. Checks that involve several keys stay here, next to the getters. The optional
-// components parse their own keys (solver/model/component_kind.hpp; parse_components below).
+// parse_xxx. Checks that involve several keys stay here, next to the getters. The components
+// parse their own keys (solver/model/component_kind.hpp; parse_components below): the solids'
+// [solids] and [[solid]] (solver/components/solids_keys.cpp, with the rigid bodies' keys of
+// solver/components/rigid_bodies.cpp), the implicit step's keys of [time]
+// (solver/components/implicit_velocity_step.cpp), and every optional component's.
 #include "solver/scene/scene.hpp"
 
 #include <algorithm>
@@ -239,7 +242,8 @@ void parse_time(const Ctx& ctx, const Table& top, Config& cfg) {
   cfg.rhie_chow_dt = t.number("rhie_chow_dt");
   cfg.solid_time = t.option<SolidStressTime>("solid_stress");
   // the default, "verlet", falls back to symplectic Euler where it does not apply (an
-  // implicit solid stress here, xi moved by cell velocities in check_elastic_coupling);
+  // implicit solid stress here, xi moved by cell velocities in the solids' check_elastic_coupling,
+  // solver/components/solids_keys.cpp);
   // given explicitly it is refused there
   cfg.elastic_coupling = t.option<ElasticCoupling>("elastic_coupling");
   cfg.verlet_project_drift = t.boolean("verlet_project_drift");
@@ -250,34 +254,6 @@ void parse_time(const Ctx& ctx, const Table& top, Config& cfg) {
             "\"verlet\" needs solid_stress = \"explicit\" (the implicit solid terms are first order anyway)");
   t.require(!cfg.verlet_project_drift || cfg.elastic_coupling == ElasticCoupling::Verlet, "verlet_project_drift",
             "needs elastic_coupling = \"verlet\" (it projects the Verlet drift's correction)");
-  cfg.solid_implicit_k = t.number("solid_implicit_k");
-  cfg.solid_implicit_reach = t.number("solid_implicit_reach");
-  cfg.solid_implicit_cfl = t.number("solid_implicit_cfl");
-  // the two act on the implicit solid term only: with the explicit stress they would do nothing
-  const bool implicit_solid = cfg.solid_time != SolidStressTime::Explicit;
-  t.require(implicit_solid || cfg.solid_implicit_reach == 0.0, "solid_implicit_reach",
-            "needs solid_stress = \"semi_implicit\" or \"upper_convected\"");
-  t.require(implicit_solid || cfg.solid_implicit_cfl == 0.0, "solid_implicit_cfl",
-            "needs solid_stress = \"semi_implicit\" or \"upper_convected\" (the explicit stress has solids.solid_cfl)");
-  cfg.solid_picard = int(t.integer("solid_picard_iterations"));
-  cfg.solid_picard_theta = t.number("solid_picard_theta");
-  cfg.solid_picard_defect = t.boolean("solid_picard_defect");
-  t.require(cfg.solid_picard == 0 || cfg.solid_time != SolidStressTime::UpperConvected, "solid_picard_iterations",
-            "is not offered with solid_stress = \"upper_convected\" (docs/implicit.md)");
-  t.require(cfg.solid_picard == 0 || !cfg.solid_picard_defect || cfg.solid_time == SolidStressTime::SemiImplicit,
-            "solid_picard_defect", "needs solid_stress = \"semi_implicit\" (it corrects through its operator); "
-            "set it false for plain repetitions of the step");
-  cfg.solid_picard_force = t.option<PicardForce>("solid_picard_force");
-  cfg.solid_picard_tol = t.number("solid_picard_tol");
-  cfg.solid_picard_anderson = int(t.integer("solid_picard_anderson"));
-  t.require(cfg.solid_picard_anderson == 0 || cfg.solid_picard >= 2, "solid_picard_anderson",
-            "needs solid_picard_iterations >= 2 (the first mixed pass is the second)");
-  t.require(cfg.solid_picard_force == PicardForce::New ||
-                (cfg.solid_picard > 0 && cfg.solid_time == SolidStressTime::SemiImplicit),
-            "solid_picard_force", "\"trapezoidal\" needs solid_picard_iterations > 0 and solid_stress = "
-            "\"semi_implicit\" (with the explicit stress the default Verlet coupling already applies the mean force)");
-  cfg.solid_rate_sweeps = t.integer("solid_rate_sweeps");
-  cfg.implicit_tol = t.number("implicit_tol");
 }
 
 void parse_solver(const Ctx& ctx, const Table& top, Config& cfg) {
@@ -354,284 +330,10 @@ void parse_probes(const Ctx& ctx, const Table& top, Config& cfg) {
   }
 }
 
-void parse_solids_options(const Ctx& ctx, const Table& top, Config& cfg) {
-  const toml::table* tp = top.table("solids", false);
-  if (!tp) return;
-  Table s(ctx, *tp, "solids", "solids");
-  s.allow();
-  SolidsOptions& o = cfg.solid_opt;
-  o.extrapolation = s.option<ExtrapolationMethod>("extrapolation");
-  o.lsq_radius = s.number("lsq_radius");
-  o.band = s.number("band");
-  o.transition = s.number("transition");
-  if (!(o.transition < o.band - 1)) {
-    // blame the key the user wrote (the transition if both are given)
-    if (s.has("transition"))
-      s.fail("transition", "must be < solids.band - 1 = " + fmt_num(o.band - 1) + " (the smoothed interface must lie "
-                           "inside the extrapolated band), got " + fmt_num(o.transition));
-    s.fail("band", "must be > solids.transition + 1 = " + fmt_num(o.transition + 1) +
-                       " (the smoothed interface must lie inside the extrapolated band), got " + fmt_num(o.band));
-  }
-  o.conservative = s.boolean("conservative");
-  o.stress_form = s.option<StressForm>("stress_discretisation");
-  o.variational_width = s.number("variational_width");
-  o.stress_blend = s.option<StressBlend>("stress_blend");
-  s.require(o.stress_blend == StressBlend::Volume || (o.stress_form == StressForm::Cell && o.conservative),
-            "stress_blend", "\"specific\" needs stress_discretisation = \"cell\" and conservative = true");
-  o.xi_advection = s.option<XiFlux>("xi_advection");
-  o.xi_velocity = s.option<XiVelocity>("xi_velocity");
-  o.solid_cfl = s.number("solid_cfl");
-  o.reinitialise = s.boolean("reinitialise");
-  o.pde_tol = s.number("pde_tol");
-  o.pde_max_iter = int(s.integer("pde_max_iter"));
-}
-
-/// The implicit solid coefficient's blend 1 - H(phi - reach dx) must vanish where phi is
-/// capped at the band's edge (phi = band), or it would reach cells whose phi is unknown.
-void check_implicit_reach(const Ctx& ctx, const Table& top, const Config& cfg) {
-  const double limit = cfg.solid_opt.band - cfg.solid_opt.transition;
-  if (cfg.solid_implicit_reach <= limit) return;
-  const toml::table* tp = top.table("time", false);
-  if (!tp) return;  // the key was not given (its default, 0, is always valid)
-  Table t(ctx, *tp, "time", "time");
-  t.fail("solid_implicit_reach", "must be <= solids.band - solids.transition = " + fmt_num(limit) +
-                                     " cells (the implicit blend must end inside the extrapolated band), got " +
-                                     fmt_num(cfg.solid_implicit_reach));
-}
-
-/// time.elastic_coupling = "verlet" advects xi with a midpoint face velocity built from the
-/// last two steps' projected face velocities (Simulation::drift_velocities): the cell
-/// velocity of solids.xi_velocity = "cell" has no such history.
-void check_elastic_coupling(const Ctx& ctx, const Table& top, Config& cfg) {
-  if (cfg.elastic_coupling == ElasticCoupling::SymplecticEuler || cfg.solid_opt.xi_velocity == XiVelocity::Face) return;
-  const toml::table* time = top.table("time", false);
-  if (!time || !time->contains("elastic_coupling")) {  // the default: falls back
-    cfg.elastic_coupling = ElasticCoupling::SymplecticEuler;
-    return;
-  }
-  Table t(ctx, *time, "time", "time");  // the key was given
-  t.fail("elastic_coupling", "\"verlet\" needs solids.xi_velocity = \"face\" (its midpoint velocity is built from the "
-                             "face velocities)");
-}
-
-void parse_solids(const Ctx& ctx, const Table& top, Config& cfg) {
-  const toml::node* n = top.node("solid");
-  if (!n) return;
-  const toml::array* arr = n->as_array();
-  if (!arr) top.fail("solid", "expected an array of tables ([[solid]] sections), got " + describe(*n));
-  const Grid& g = cfg.grid;
-  const std::filesystem::path scene_dir = std::filesystem::path(ctx.file).parent_path();
-  // a prescribed flow moves the solids kinematically: their material is not used
-  const bool need_material = cfg.flow == FlowMode::Solve;
-  std::set<std::string> names;
-  for (std::size_t i = 0; i < arr->size(); ++i) {
-    const std::string prefix = "solid[" + std::to_string(i) + "]";
-    const toml::table* t = arr->get(i)->as_table();
-    if (!t) ctx.fail(prefix, arr->get(i), "expected a table ([[solid]] section), got " + describe(*arr->get(i)));
-    Table s(ctx, *t, prefix, "solid");
-    s.allow();
-    SolidSpec sp;
-
-    sp.name = s.has("name") ? s.string("name") : "solid" + std::to_string(i);
-    bool ok = !sp.name.empty();
-    for (char c : sp.name) ok = ok && (std::isalnum((unsigned char)c) || c == '_');
-    s.require(ok, "name", "must be a non-empty name of letters, digits and '_', got " + dq(sp.name));
-    s.require(names.insert(sp.name).second, "name", "duplicate solid name " + dq(sp.name));
-
-    // ---- shape
-    ShapeParams& sh = sp.shape;
-    sh.kind = s.option<ShapeKind>("shape");
-    const std::string kind = to_string(sh.kind);  // the canonical name (an alias may be written)
-    if (const auto k = s.misplaced("shape", kind))
-      s.fail(*k, "not a parameter of shape = " + dq(kind) + " (it takes " + join(s.keys_of("shape", kind), ", ") + ")");
-
-    if (sh.kind != ShapeKind::Tabulated) {
-      const auto c = s.vec2("center");
-      sh.cx = c[0];
-      sh.cy = c[1];
-      sh.angle = sh.kind == ShapeKind::Circle ? 0.0 : s.number("angle");
-    }
-    if (sh.kind == ShapeKind::Circle || sh.kind == ShapeKind::Zalesak) {
-      sh.radius = s.number("radius");
-    }
-    if (sh.kind == ShapeKind::Ellipse) {
-      const auto ab = s.vec2("semi_axes");
-      s.require(ab[0] > 0 && ab[1] > 0, "semi_axes",
-                "both semi-axes must be > 0, got [" + fmt_num(ab[0]) + ", " + fmt_num(ab[1]) + "]");
-      sh.a = ab[0];
-      sh.b = ab[1];
-    } else if (sh.kind == ShapeKind::RoundedRectangle) {
-      const auto hs = s.vec2("half_size");
-      s.require(hs[0] > 0 && hs[1] > 0, "half_size",
-                "both half-sizes must be > 0, got [" + fmt_num(hs[0]) + ", " + fmt_num(hs[1]) + "]");
-      sh.half_width = hs[0];
-      sh.half_height = hs[1];
-      sh.corner_radius = s.number("corner_radius");
-      const double rmax = std::min(hs[0], hs[1]);
-      s.require(sh.corner_radius >= 0 && sh.corner_radius <= rmax, "corner_radius",
-                "must be in [0, min(half_size) = " + fmt_num(rmax) + "], got " + fmt_num(sh.corner_radius));
-    } else if (sh.kind == ShapeKind::Zalesak) {
-      sh.slot_half_width = s.number("slot_half_width");
-      s.require(sh.slot_half_width > 0 && sh.slot_half_width < sh.radius, "slot_half_width",
-                "must be in (0, radius = " + fmt_num(sh.radius) + "), got " + fmt_num(sh.slot_half_width));
-      sh.slot_top = s.number("slot_top");
-      const double h = std::sqrt(sh.radius * sh.radius - sh.slot_half_width * sh.slot_half_width);
-      s.require(sh.slot_top > sh.cy - h && sh.slot_top < sh.cy + h, "slot_top",
-                "must be strictly between the y where the slot walls meet the circle, (" + fmt_num(sh.cy - h) + ", " +
-                    fmt_num(sh.cy + h) + "), got " + fmt_num(sh.slot_top));
-    } else if (sh.kind == ShapeKind::Tabulated) {
-      const std::string f = s.string("file");
-      s.require(!f.empty(), "file", "must be a non-empty path");
-      std::filesystem::path fp(f);
-      if (fp.is_relative() && !scene_dir.empty()) fp = scene_dir / fp;
-      sh.file = fp.lexically_normal().string();
-      std::error_code ec;
-      if (!std::filesystem::exists(sh.file, ec))
-        s.fail("file", "cannot read " + dq(sh.file) + ": no such file" +
-                           (std::filesystem::path(f).is_relative() ? " (relative paths are relative to the scene file's directory)"
-                                                                   : ""));
-      if (std::filesystem::is_directory(sh.file, ec)) s.fail("file", "cannot read " + dq(sh.file) + ": is a directory");
-    }
-
-    // build it now, so that bad geometry fails at load time
-    const char* shape_key = sh.kind == ShapeKind::Tabulated ? "file" : "shape";
-    std::unique_ptr<Shape> shape;
-    try {
-      shape = make_shape(sh);
-    } catch (const std::exception& e) {
-      s.fail(shape_key, std::string("invalid geometry: ") + e.what());
-    }
-    const BoundingBox bb = shape->bbox();
-    const double X0 = g.x0, X1 = g.x0 + g.lx(), Y0 = g.y0, Y1 = g.y0 + g.ly();
-    if (!(bb.xmax > X0 && bb.xmin < X1 && bb.ymax > Y0 && bb.ymin < Y1))
-      s.fail(sh.kind == ShapeKind::Tabulated ? "file" : "center",
-             "the solid lies outside the domain: its bounding box [" + fmt_num(bb.xmin) + ", " + fmt_num(bb.xmax) +
-                 "] x [" + fmt_num(bb.ymin) + ", " + fmt_num(bb.ymax) + "] does not intersect the domain [" +
-                 fmt_num(X0) + ", " + fmt_num(X1) + "] x [" + fmt_num(Y0) + ", " + fmt_num(Y1) + "]");
-
-    // ---- motion: a soft solid, or a rigid body (solver/model/rigid_body.hpp)
-    sp.motion = s.option<SolidMotion>("motion");
-    const std::string motion = to_string(sp.motion);
-    if (const auto k = s.misplaced("motion", motion))
-      s.fail(*k, "only used with motion = \"" + s.entry(*k).only.front() + "\" (motion is \"" + motion + "\")");
-    const bool rigid = sp.rigid();
-    if (rigid) sp.forcing = s.option<BodyForcing>("forcing");
-    if (rigid) sp.forcing_hold = s.boolean("forcing_hold");
-    if (sp.forcing_hold && sp.forcing != BodyForcing::Sharp)
-      s.fail("forcing_hold", "only with forcing = \"sharp\" (forcing is \"" + std::string(to_string(sp.forcing)) + "\")");
-    if (rigid) sp.forcing_interpolation = s.option<ForcingInterpolation>("forcing_interpolation");
-    if (sp.forcing_interpolation != ForcingInterpolation::Linear && sp.forcing == BodyForcing::Diffuse)
-      s.fail("forcing_interpolation", "only with forcing = \"interpolated\" or \"sharp\" (forcing is \"diffuse\")");
-    // "sharp" cuts the inside cells out of the pressure solve: the pressure acts on the body
-    // through its cut faces only, which a pinned body's rotation rate (the angular momentum
-    // of the inside cells) does not see
-    if (rigid && sp.forcing == BodyForcing::Sharp && sp.motion == SolidMotion::Pinned)
-      s.fail("forcing", "\"sharp\" is not offered with motion = \"pinned\" (the pressure torque would not turn "
-                        "it); use \"interpolated\" or \"diffuse\"");
-    // the point a rigid body's rotation refers to (as for the initial omega)
-    const double ccx = sh.kind == ShapeKind::Tabulated ? 0.5 * (bb.xmin + bb.xmax) : sh.cx;
-    const double ccy = sh.kind == ShapeKind::Tabulated ? 0.5 * (bb.ymin + bb.ymax) : sh.cy;
-
-    // ---- material
-    if (rigid && s.has("mu_s"))
-      s.fail("mu_s", "not used with motion = \"" + motion + "\" (a rigid body has no elastic stress)");
-    sp.mu_s = rigid ? 0.0 : s.number("mu_s", /*required=*/need_material);
-    sp.density = s.number("density", /*required=*/need_material);
-    // a rigid body's region blends to the fluid's viscosity unless told otherwise: its
-    // velocity is imposed there, and a drop of mu across the interface would move the
-    // effective no-slip surface
-    sp.viscosity = rigid && !s.has("viscosity") ? cfg.mu_f : s.number("viscosity");
-    // a grid-scale Kelvin-Voigt viscosity c dx rho_s c_s (c_s = sqrt(2 mu_s / rho_s), the
-    // shear-wave speed at rest) on top of `viscosity`: the form of the peer code IncRMT's
-    // extra viscosity (Rycroft et al. 2020; c = 0.4-0.8 in its examples), which vanishes as
-    // the grid is refined
-    sp.grid_viscosity = s.number("grid_viscosity");
-    if (rigid && s.has("grid_viscosity"))
-      s.fail("grid_viscosity", "not used with motion = \"" + motion + "\" (a rigid body has no elastic waves)");
-    sp.viscosity += sp.grid_viscosity * g.dx * std::sqrt(sp.density * 2.0 * sp.mu_s);
-    sp.model = s.option<ConstitutiveLaw>("model");
-    if (const auto k = s.misplaced("model", to_string(sp.model)))
-      s.fail(*k, "only used with model = \"strain_stiffening\"");
-    if (sp.model == ConstitutiveLaw::StrainStiffening) {
-      sp.c3 = s.number("c3");
-      s.require(sp.mu_s > 0 || !need_material, "mu_s", "must be > 0 with model = \"strain_stiffening\" (it is c1)");
-    }
-
-    // ---- initial velocity
-    sp.velocity = s.option<SolidVelocity>("velocity");
-    if (const auto k = s.misplaced("velocity", to_string(sp.velocity)))
-      s.fail(*k, "only used with velocity = \"rigid\" (velocity is \"fluid\": the solid keeps the fluid's velocity)");
-    if (sp.velocity == SolidVelocity::Rigid) {
-      sp.u = s.number("u");
-      sp.v = s.number("v");
-      sp.omega = s.number("omega");
-    }
-    // a rigid body's initial velocity is its motion's
-    if (rigid)
-      for (const char* k : {"velocity", "u", "v", "omega"}) {
-        if (sp.motion == SolidMotion::Pinned && std::string(k) == "omega") continue;
-        if (s.has(k))
-          s.fail(k, "not used with motion = \"" + motion + "\" (the motion sets the body's velocity" +
-                        (sp.motion == SolidMotion::Pinned ? std::string("; a pinned body takes `omega` only)") : ")"));
-      }
-    if (sp.motion == SolidMotion::Fixed) {
-      sp.velocity = SolidVelocity::Rigid;
-      sp.u = sp.v = sp.omega = 0.0;
-    } else if (sp.motion == SolidMotion::Prescribed) {
-      char buf[2][40];
-      std::snprintf(buf[0], sizeof buf[0], "%.17g", ccx);
-      std::snprintf(buf[1], sizeof buf[1], "%.17g", ccy);
-      sp.path_x = s.has("path_x") ? expression_text(s, "path_x") : std::string(buf[0]);
-      sp.path_y = s.has("path_y") ? expression_text(s, "path_y") : std::string(buf[1]);
-      sp.rotation_rate = s.has("rotation_rate") ? expression_text(s, "rotation_rate") : std::string("0");
-      const RigidPath path(sp.path_x, sp.path_y, sp.rotation_rate);
-      const double t0 = cfg.t_start, tol = 1e-9 * g.dx;
-      const auto c0 = path.centre(t0);
-      for (int d = 0; d < 2; ++d) {
-        const double want = d == 0 ? ccx : ccy, got = c0[std::size_t(d)];
-        if (!std::isfinite(got) || std::abs(got - want) > tol)
-          s.fail(d == 0 ? "path_x" : "path_y",
-                 "must start at the centre: it is " + fmt_num(got) + " at t = " + fmt_num(t0) + ", the centre " +
-                     (d == 0 ? "x" : "y") + " is " + fmt_num(want));
-      }
-      const auto v0 = path.velocity(t0);
-      sp.velocity = SolidVelocity::Rigid;
-      sp.u = v0[0];
-      sp.v = v0[1];
-      sp.omega = path.rate(t0);
-      if (!std::isfinite(sp.u) || !std::isfinite(sp.v) || !std::isfinite(sp.omega))
-        s.fail(s.has("rotation_rate") ? "rotation_rate" : "path_x", "the motion's velocity is not finite at the start");
-    } else if (sp.motion == SolidMotion::Pinned) {
-      const auto p = s.has("pivot") ? s.vec2("pivot") : std::array<double, 2>{ccx, ccy};
-      sp.pivot_x = p[0];
-      sp.pivot_y = p[1];
-      sp.velocity = SolidVelocity::Rigid;
-      sp.omega = s.number("omega");
-      // rotation about the pivot, written as a translation plus the rotation about the centre
-      sp.u = -sp.omega * (ccy - sp.pivot_y);
-      sp.v = sp.omega * (ccx - sp.pivot_x);
-    }
-    if (s.has("clamp")) sp.clamp = s.string("clamp");
-
-    cfg.solids.push_back(std::move(sp));
-  }
-  // clamped soft solids: the body they are clamped to must be a rigid solid of the scene
-  for (std::size_t i = 0; i < cfg.solids.size(); ++i) {
-    SolidSpec& sp = cfg.solids[i];
-    if (sp.clamp.empty()) continue;
-    Table s(ctx, *arr->get(i)->as_table(), "solid[" + std::to_string(i) + "]", "solid");
-    for (std::size_t k = 0; k < cfg.solids.size(); ++k)
-      if (cfg.solids[k].name == sp.clamp) sp.clamp_index = int(k);
-    if (sp.clamp_index < 0) s.fail("clamp", "no solid is named " + dq(sp.clamp));
-    if (!cfg.solids[std::size_t(sp.clamp_index)].rigid())
-      s.fail("clamp", "solid " + dq(sp.clamp) + " is not rigid (a soft solid is clamped to a body with motion = "
-                      "\"fixed\", \"prescribed\" or \"pinned\")");
-  }
-}
-
 /// [suspension]: random particles (solver/scene/suspension.hpp), appended to the [[solid]] array
-/// of the file as ordinary solid tables before parse_solids reads it, so every check of a
-/// solid (and the overlap check of check_start_state) applies to them too.
+/// of the file as ordinary solid tables before the solids' parser reads them
+/// (solver/components/solids_keys.cpp), so every check of a solid (and the overlap check of
+/// check_start_state) applies to them too.
 void parse_suspension(const Ctx& ctx, toml::table& root, const Table& top, const Config& cfg) {
   const toml::table* tp = top.table("suspension", false);
   if (!tp) return;
@@ -900,11 +602,16 @@ void check_memory(const Ctx& ctx, const Table& top, const Config& cfg) {
                       " available (grid " + std::to_string(cfg.grid.nx) + " x " + std::to_string(cfg.grid.ny) + ")");
 }
 
-/// The optional components' own keys (solver/model/component_kind.hpp), each parsed by its kind
-/// in registration order; a kind the scene does not use adds nothing.
+/// The components' own keys (solver/model/component_kind.hpp), in registration order: first
+/// those the core reads too (the solids, the implicit step: ComponentKind::configure, into the
+/// Config), then the others' options (ComponentKind::parse); a kind the scene does not use adds
+/// nothing.
 void parse_components(const Table& top, Config& cfg) {
   for (const ComponentKind& k : component_kinds())
-    if (auto o = k.parse(top, cfg)) cfg.components.push_back({k.name, std::move(o)});
+    if (k.configure) k.configure(top, cfg);
+  for (const ComponentKind& k : component_kinds())
+    if (k.parse)
+      if (auto o = k.parse(top, cfg)) cfg.components.push_back({k.name, std::move(o)});
 }
 
 Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>& sets) {
@@ -933,14 +640,10 @@ Config build_config(Ctx& ctx, toml::table& root, const std::vector<std::string>&
   parse_solver(ctx, top, cfg);
   parse_output(ctx, top, cfg);
   parse_probes(ctx, top, cfg);
-  parse_solids_options(ctx, top, cfg);  // after parse_solver: the solids need cfg.flow
-  check_implicit_reach(ctx, top, cfg);  // after parse_solids_options: checked against the band
-  check_elastic_coupling(ctx, top, cfg);  // after parse_solids_options: the xi velocity
-  parse_suspension(ctx, root, top, cfg);  // before parse_solids: its particles are [[solid]] tables
-  parse_solids(ctx, top, cfg);
-  parse_components(top, cfg);     // after the core: a component's checks may use any of it
+  parse_suspension(ctx, root, top, cfg);  // before the solids' keys: its particles are [[solid]] tables
+  parse_components(top, cfg);  // after the core: a component's checks may use any of it
   check_start_state(ctx, top, cfg);
-  check_fixed_step(ctx, top, cfg);  // after parse_solids: the solids' limits
+  check_fixed_step(ctx, top, cfg);  // after the solids' keys: their limits
   check_memory(ctx, top, cfg);
   return cfg;
 }

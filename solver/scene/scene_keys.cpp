@@ -30,16 +30,11 @@ using namespace keys;
 
 std::vector<KeyDef> build_keys() {
   const Config d;  // the defaults (solver/model/config.hpp)
-  const SolidSpec ds;
-  const ShapeParams& dsh = ds.shape;
   const PoissonOptions& dp = d.poisson;
-  const SolidsOptions& dso = d.solid_opt;
   const InitialVelocity& di = d.init;
   const SideBc db;
   const SuspensionSpec dsu;
   using KT = KeyType;
-  const std::vector<std::string> kRectangle = {"rounded_rectangle"}, kNotTabulated = {"circle", "ellipse",
-                                                                                       "rounded_rectangle", "zalesak"};
   std::vector<KeyDef> k = {
       shown_default(str("", "name", std::nullopt,
                         "name of the scene; the default output directory is `out/<name>`. Must not contain `/`"),
@@ -154,51 +149,8 @@ std::vector<KeyDef> build_keys() {
               "onto divergence-free face velocities (one more solve of the pressure operator per step, to 1e-6 "
               "relative) so that xi is carried by a divergence-free velocity; unprojected it compresses thin solids' "
               "maps (results/fsi.md, \"What compresses the flag's map\")"),
-      num("time", "solid_implicit_k", d.solid_implicit_k, gt(0),
-          "k of the semi-implicit solid stress: eta = k G dt (stable for k >= 1/4, docs/implicit.md)"),
-      num("time", "solid_implicit_reach", d.solid_implicit_reach, ge(0, "cells"),
-          "cells by which the implicit solid term (semi_implicit or upper_convected) reaches further into the "
-          "fluid than the stress: its coefficient is blended with 1 - H(phi - reach dx) instead of 1 - H(phi); at "
-          "most solids.band - solids.transition. 2 keeps a disc in a fluid bounded to about 8x (semi_implicit) "
-          "or 4x (upper_convected) the explicit step, at some cost in accuracy (docs/implicit.md)"),
-      num("time", "solid_implicit_cfl", d.solid_implicit_cfl, ge(0, "0 = none"),
-          "P of a solid time-step limit dt <= P dx sqrt(rho_s / G) for the implicit solid stress (semi_implicit or "
-          "upper_convected), which has none by default (0); with solid_implicit_reach = 2 a disc in a fluid stays "
-          "bounded to P ~ 8, less through an impact (docs/implicit.md)"),
-      integer("time", "solid_picard_iterations", d.solid_picard, in(0, false, 50, false),
-              "fixed-point iterations of the whole step in which xi is advanced with (1 - solid_picard_theta) u^n + "
-              "solid_picard_theta u^{n+1} of the last iterate and the step re-solved (0: xi moved by u^n, Algorithm 1); "
-              "each costs a whole step (experimental; docs/implicit.md)"),
-      num("time", "solid_picard_theta", d.solid_picard_theta, in(0, false, 1, false),
-          "weight of the new velocity in the transport of xi of solid_picard_iterations (1/2: midpoint, 1: backward "
-          "Euler)"),
-      boolean("time", "solid_picard_defect", d.solid_picard_defect,
-              "the iterations of solid_picard_iterations correct the last velocity change through the "
-              "semi-implicit operator, (rho/dt - A(eta)) (d - d_last) = f - rho d_last / dt, so that its term vanishes "
-              "at convergence; false: each iteration repeats the semi-implicit step with the new xi"),
-      choice<PicardForce>("time", "solid_picard_force", d.solid_picard_force,
-                          "solid force of each pass of solid_picard_iterations: `\"new\"`, the force of the pass's "
-                          "xi^{n+1} applied whole (its fixed point damps like backward Euler); `\"trapezoidal\"`, the "
-                          "mean of the step's starting force F(xi^n) and the pass's (with solid_picard_theta = 1/2 the "
-                          "trapezoidal rule; the defect iteration converges in one pass in the solid's interior at "
-                          "solid_implicit_k = solid_picard_theta / 2); `\"trapezoidal\"` needs solid_stress = "
-                          "\"semi_implicit\" and solid_picard_iterations > 0 (docs/implicit.md)"),
-      num("time", "solid_picard_tol", d.solid_picard_tol, in(0, false, 1, true),
-          "relative tolerance of the pressure and velocity solves in every pass of solid_picard_iterations but the "
-          "last, never tighter than solver.tol and implicit_tol (0: those in every pass); the earlier passes only "
-          "give the velocity that moves xi in the next, the last solves to the full tolerances (docs/implicit.md)"),
-      integer("time", "solid_picard_anderson", d.solid_picard_anderson, in(0, false, 10, false),
-              "history depth m of an Anderson acceleration of the passes of solid_picard_iterations: each pass "
-              "from the combination of the last m + 1 passes' results that minimises their residual (0: none, "
-              "each pass from the last one's result; docs/implicit.md)"),
-      integer("time", "solid_rate_sweeps", d.solid_rate_sweeps, in(1, false, 100, false),
-              "outer block Gauss-Seidel sweeps (u, then v) of solid_stress = \"upper_convected\": the first "
-              "without its cross terms (b_xy and the other component's derivatives: lagged), each further "
-              "one with them at the last sweep's solution (docs/implicit.md)"),
-      num("time", "implicit_tol", d.implicit_tol, in(0, true, 1, true),
-          "relative residual of the implicit velocity solve (time.viscous = \"implicit\" or "
-          "solid_stress = \"semi_implicit\"): its unknown is the velocity change over a step, so it "
-          "needs far less than the pressure's solver.tol (docs/implicit.md)"),
+      // time.solid_implicit_k ... time.implicit_tol: solver/components/implicit_velocity_step.cpp
+      // (implicit_velocity_step_kind)
 
       choice<FlowMode>("solver", "flow", d.flow,
                        "`\"solve\"`: the Navier-Stokes equations; `\"prescribed\"`: no flow solve, the initial "
@@ -253,154 +205,8 @@ std::vector<KeyDef> build_keys() {
 
       // [[tracers]]: solver/components/tracers.cpp (tracers_kind)
 
-      choice<ExtrapolationMethod>("solids", "extrapolation", dso.extrapolation,
-                                  "extrapolation of the reference map into the band: least squares (the paper's "
-                                  "Algorithm 2) or the PDE baseline (Aslam 2004)"),
-      only(shown_default(num("solids", "lsq_radius", dso.lsq_radius,
-                             // r^2 in [8, 33): the 5 x 5 block (2 sqrt(2)) to the paper's 4 sqrt(2)
-                             KeyRange{std::sqrt(8.0 - 1e-6), std::sqrt(33.0), false, true,
-                                      "cells: from the 5 x 5 block, 2 sqrt(2), to the paper's 4 sqrt(2) = 5.66",
-                                      "in [2.83, 5.74]"},
-                             "radius of the least-squares plane fit in cells (cells with di² + dj² ≤ "
-                             "⌊lsq_radius²⌋ enter it); the paper's is 4√2 = `5.66`"),
-                         "`2.83` (2√2)"),
-           "extrapolation", {"lsq"}),
-      num("solids", "band", dso.band, gt(1, "cells"), "width w_E of the extrapolated band, in cells"),
-      num("solids", "transition", dso.transition, gt(0, "cells"),
-          "half-width w_T of the smoothed Heaviside that blends solid and fluid (eq. 3.5), in cells; "
-          "must be < `band - 1`"),
-      boolean("solids", "conservative", dso.conservative,
-              "`true`: divergence of the blended stress; `false`: blend of the divergences"),
-      choice<StressForm>("solids", "stress_discretisation", dso.stress_form,
-                         "solid stress divergence: `\"cell\"`, the paper's cell-centred stress (eqs. 2.9, 3.1), "
-                         "`\"face\"`, a compact face-based form, or `\"variational\"`, the force that is the "
-                         "derivative of the stored energy of the cells whose ξ is advected (weight moved inward "
-                         "by w_V + 1 cells, `variational_width`; docs/implicit.md)"),
-      num("solids", "variational_width", dso.variational_width, gt(0, "cells"),
-          "with `stress_discretisation = \"variational\"`: half-width w_V of the stored energy's weight "
-          "1 - H(phi + (w_V + 1) dx) (eq. 3.5 moved inward so that no weighted cell differences an extrapolated ξ), "
-          "in cells"),
-      choice<StressBlend>("solids", "stress_blend", dso.stress_blend,
-                          "weight of a solid's stress in the mixture: `\"volume\"`, the paper's 1 - H (eq. 3.6), or "
-                          "`\"specific\"`, (1 - H) rho_b / rho_s for a solid heavier than the fluid (the stress per unit "
-                          "mass blended by volume; removes most of a heavy solid's energy gain, docs/density_ratio.md); "
-                          "cell stress in the conservative form only"),
-      choice<XiFlux>("solids", "xi_advection", dso.xi_advection,
-                     "face values of ξ in its advection (eq. 3.3): second-order central (the paper's) or "
-                     "Superbee / van Leer / minmod limited upwind"),
-      choice<XiVelocity>("solids", "xi_velocity", dso.xi_velocity,
-                         "the velocity that carries ξ (eq. 3.3): the projected face velocities, or the cell-centred "
-                         "velocity the solid stress accelerates (with face velocities the velocity's shortest waves "
-                         "strain ξ little or not at all, so the solid has no restoring force for them: "
-                         "docs/reference_map.md)"),
-      num("solids", "solid_cfl", dso.solid_cfl, in(0, true, 8, false),  // above ~1 only for the stability study (bench/stability.py)
-          "P of the solid time-step limit dt <= P dx / sqrt(2 mu_s / rho_s) (explicit stress; a fixed `time.dt` above "
-          "it is refused); with Algorithm 1's coupling stiff solids fail from about 0.75, with the default Verlet coupling and the cell stress P = 1 is stable at every stiffness (docs/stability.md)"),
-      boolean("solids", "reinitialise", dso.reinitialise, "reinitialise phi0(xi) by fast marching every step"),
-      only(num("solids", "pde_tol", dso.pde_tol, gt(0),
-               "stop when the largest change in the band per iteration is below pde_tol times the largest "
-               "known value"),
-           "extrapolation", {"pde"}),
-      only(integer("solids", "pde_max_iter", dso.pde_max_iter, in(1, false, 1000000000, false), "iteration limit"),
-           "extrapolation", {"pde"}),
-
-      shown_default(str("solid", "name", std::nullopt,
-                        "unique name of letters, digits and `_` (`solid0`, `solid1`, ... by index)"),
-                    "`\"solid<i>\"`"),
-      choice<ShapeKind>("solid", "shape", std::nullopt, "reference shape phi0 (eq. 3.2); its keys follow"),
-      only(vec2("solid", "center", std::nullopt, "centre (x, y)"), "shape", kNotTabulated),
-      only(num("solid", "radius", std::nullopt, gt(0), "radius (of the disk, for `zalesak`)"), "shape",
-           {"circle", "zalesak"}),
-      only(key("solid", "semi_axes", KT::Vec2, {}, text_range("both > 0"), "semi-axes (a, b), a along the rotated x axis"),
-           "shape", {"ellipse"}),
-      only(key("solid", "half_size", KT::Vec2, {}, text_range("both > 0"), "half-width and half-height (hw, hh)"),
-           "shape", kRectangle),
-      only(key("solid", "corner_radius", KT::Float, dsh.corner_radius, text_range("in [0, min(hw, hh)]"),
-               "radius of the rounded corners (0: sharp)"),
-           "shape", kRectangle),
-      only(key("solid", "slot_half_width", KT::Float, {}, text_range("in (0, radius)"),
-               "half-width of the slot cut from the bottom of the disk"),
-           "shape", {"zalesak"}),
-      only(num("solid", "slot_top", std::nullopt, {},
-               "y of the top of the slot (unrotated); strictly between the y values where the slot walls meet the "
-               "circle"),
-           "shape", {"zalesak"}),
-      only(num("solid", "angle", dsh.angle, {}, "rotation, radians counter-clockwise about `center`"), "shape",
-           {"ellipse", "rounded_rectangle", "zalesak"}),
-      only(str("solid", "file", std::nullopt,
-               "text file with a sampled phi0 (negative inside), relative to the scene file's directory (format: "
-               "`solver/model/shape.hpp`)"),
-           "shape", {"tabulated"}),
-      shown_default(num("solid", "mu_s", ds.mu_s, ge(0),
-                        "the paper's mu^s: solid stress sigma = 2 mu_s b (shear modulus 2 mu_s); 0 gives a "
-                        "stress-free solid"),
-                    "required (`0.0` with `flow = \"prescribed\"`)"),
-      choice<ConstitutiveLaw>("solid", "model", ds.model,
-                              "constitutive law (kernels/constitutive.hpp): the paper's neo-Hookean sigma = 2 mu_s b, or "
-                              "strain-stiffening W = mu_s (I1 - 3) + c3 (I1 - 3)^2"),
-      only(num("solid", "c3", std::nullopt, ge(0), "stiffening coefficient of W = mu_s (I1 - 3) + c3 (I1 - 3)^2; strong stiffening (c3 = 4 mu_s in "
-               "`disc_tgv`) blows up with the cell stress form, `solids.stress_discretisation = \"face\"` stays stable"),
-           "model", {"strain_stiffening"}),
-      shown_default(num("solid", "density", ds.density, gt(0), "solid density rho_s"),
-                    "required (`1.0` with `flow = \"prescribed\"`)"),
-      num("solid", "viscosity", ds.viscosity, ge(0),
-          "Kelvin-Voigt solid viscosity (0: no viscous stress in the solid beyond the fluid's)"),
-      num("solid", "grid_viscosity", ds.grid_viscosity, ge(0),
-          "c of a grid-scale Kelvin-Voigt viscosity c dx rho_s c_s added to `viscosity` (c_s = sqrt(2 mu_s / "
-          "rho_s)); vanishes as the grid is refined (the peer code IncRMT's extra viscosity has c = 0.4-0.8)"),
-      choice<SolidVelocity>("solid", "velocity", ds.velocity,
-                            "initial velocity inside the solid: rigid (from `u`, `v`, `omega`) or the fluid's"),
-      only(num("solid", "u", ds.u, {}, "initial translation velocity, x"), "velocity", {"rigid"}),
-      only(num("solid", "v", ds.v, {}, "initial translation velocity, y"), "velocity", {"rigid"}),
-      only(num("solid", "omega", ds.omega, {},
-               "initial rotation rate (counter-clockwise) about `center` (the bounding-box centre for `tabulated`)"),
-           "velocity", {"rigid"}),
-      choice<SolidMotion>("solid", "motion", ds.motion,
-                          "`\"free\"`: a soft solid moved by the flow; a rigid body (docs/bodies.md) held still "
-                          "(`\"fixed\"`), moved on a path (`\"prescribed\"`) or pinned at a point and free to rotate "
-                          "(`\"pinned\"`); its velocity is imposed in its region and the force on it reported in "
-                          "`solids.csv`. A rigid body takes no `mu_s`; its `viscosity` defaults to the fluid's"),
-      only(choice<BodyForcing>("solid", "forcing", ds.forcing,
-                               "how a rigid body's velocity is imposed (docs/bodies.md): `\"diffuse\"` relaxes the "
-                               "cells by their sub-cell fraction (its surface slips by O(dt)); `\"interpolated\"` is "
-                               "sharp: cells inside take the body's velocity, the fluid cells next to the surface the "
-                               "value interpolated along the normal between the surface and an image point; `\"sharp\"` is "
-                               "`\"interpolated\"` with the cells inside cut out of the pressure solve (their faces "
-                               "carry the body's velocity, not corrected by the projection); not for a pinned body"),
-           "motion", {"fixed", "prescribed", "pinned"}),
-      only(boolean("solid", "forcing_hold", ds.forcing_hold,
-                   "`forcing = \"sharp\"` only: hold the cells the forcing sets (inside and next to the surface) "
-                   "at their values of the step's start through the advection and the viscous step, the momentum "
-                   "they would have taken counted in the force (docs/bodies.md)"),
-           "motion", {"fixed", "prescribed", "pinned"}),
-      only(choice<ForcingInterpolation>(
-               "solid", "forcing_interpolation", ds.forcing_interpolation,
-               "`forcing = \"interpolated\"` or `\"sharp\"`: the velocity of a fluid cell next to the surface "
-               "from the profile along the normal through the surface (the body's velocity) and one image point "
-               "(`\"linear\"`) or two (`\"quadratic\"`: the linear chord's O(dx^2) curvature error, which moves "
-               "the effective wall outward, removed; docs/bodies.md)"),
-           "motion", {"fixed", "prescribed", "pinned"}),
-      only(shown_default(key("solid", "path_x", KT::Expression, {}, {},
-                             "x of the centre as an expression of t; must equal `center` at the start time"),
-                         "`center` (still)"),
-           "motion", {"prescribed"}),
-      only(shown_default(key("solid", "path_y", KT::Expression, {}, {},
-                             "y of the centre as an expression of t; must equal `center` at the start time"),
-                         "`center` (still)"),
-           "motion", {"prescribed"}),
-      only(shown_default(key("solid", "rotation_rate", KT::Expression, {}, {},
-                             "rotation rate omega(t) about the centre, counter-clockwise, an expression of t"),
-                         "`0`"),
-           "motion", {"prescribed"}),
-      only(shown_default(vec2("solid", "pivot", std::nullopt,
-                              "the fixed point (x, y) a pinned body rotates about; its initial rate is `omega`"),
-                         "`center`"),
-           "motion", {"pinned"}),
-      only(shown_default(str("solid", "clamp", std::nullopt,
-                             "name of a rigid solid this soft solid is clamped to: where it overlaps that body its "
-                             "reference map moves with it, and contact between the two is off"),
-                         "not clamped"),
-           "motion", {"free"}),
+      // [solids] and [[solid]]: solver/components/solids_keys.cpp (solids_kind); a rigid body's
+      // keys in [[solid]]: solver/components/rigid_bodies.cpp (rigid_bodies_kind)
       // solid.markers, solid.boundary_markers: solver/components/markers.cpp (markers_kind)
 
       // solid.actuation and its table: solver/components/actuation.cpp (actuation_kind)
@@ -468,10 +274,7 @@ std::vector<TableDef> core_tables() {
       {"output", "`[output]`", false, false, false, ""},
       {"probe", "`[[probe]]`", false, true, false, ""},
       // [[tracers]]: solver/components/tracers.cpp
-      {"solids", "`[solids]`", false, false, false, "Options shared by all solids; widths are in cells."},
-      {"solid", "`[[solid]]`", false, true, false,
-       "A shape key that does not belong to the chosen `shape` is an error, as are `u`, `v`, `omega` with "
-       "`velocity = \"fluid\"`."},
+      // [solids], [[solid]]: solver/components/solids_keys.cpp
       // solid.actuation: solver/components/actuation.cpp
       {"suspension", "`[suspension]`", false, false, false,
        "Particles at random positions without overlap (random sequential addition, solver/scene/suspension.hpp), "
@@ -494,7 +297,7 @@ KeyCatalog with_components(std::vector<TableDef> tables, std::vector<KeyDef> all
     for (std::size_t i = 0; i < all.size(); ++i)
       if (!kind.after.empty() && all[i].dotted() == kind.after) pos = i + 1;
     for (const KeyDef& k : kind.keys) {
-      if (pos < all.size() && pos > 0 && all[pos - 1].table == k.table)
+      if (pos > 0 && all[pos - 1].table == k.table)  // (pos == all.size(): the anchor is the last key)
         all.insert(all.begin() + std::ptrdiff_t(pos++), k);
       else
         all.push_back(k);

@@ -9,15 +9,16 @@
 // Defaults are read from a default-constructed Config (solver/model/config.hpp), so the member
 // initialisers there are the only copy of a default value.
 //
-// The optional components (solver/model/component_kind.hpp) declare their own keys and tables
-// in their own files; scene_keys() and scene_tables() are the core's entries of
+// The components (solver/model/component_kind.hpp) declare their own keys and tables in their
+// own files (the solids' [solids] and [[solid]], the rigid bodies' keys in [[solid]] and the
+// implicit step's in [time] too); scene_keys() and scene_tables() are the core's entries of
 // scene_keys.cpp with the components' merged in (each component says after which key or
 // table its entries go in the reference). The entry types and their builders are in
 // solver/io/key_def.hpp.
 //
 // Checks that involve several keys (time.end > time.start, transition < band - 1,
 // probes inside the domain, the per-shape keys of a [[solid]]) stay
-// as code next to the parse functions of scene.cpp; their entries here carry the range as
+// as code next to the parse functions (scene.cpp, or the component's own file); their entries here carry the range as
 // text for the reference only.
 #include <string>
 #include <vector>
