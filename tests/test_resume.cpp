@@ -324,13 +324,17 @@ TEST(Components, ColumnsGoRightAfterTheBuiltInColumnTheyName) {
   const auto rows = solid_values(sim);
   ASSERT_EQ(rows.size(), sim.solids().size());
   ASSERT_EQ(rows[0].size(), scols.size());
+  // "area" is the solids' component's column (first after step, time, solid): a component
+  // that names it comes after the solids' columns, which stay together, and before contact's,
+  // which name the solids' last column, sigma_max
+  EXPECT_EQ(scols[3], "area");
   const std::size_t s = at(scols, "index_plus_one");
   ASSERT_LT(s, scols.size());
-  EXPECT_EQ(scols[s - 1], "area");
+  EXPECT_EQ(scols[s - 1], "sigma_max");
   for (std::size_t r = 0; r < rows.size(); ++r) EXPECT_EQ(rows[r][s], double(r) + 1.0);
   const std::size_t gap = at(scols, "gap_solid");
   ASSERT_LT(gap, scols.size());
-  EXPECT_EQ(scols[gap - 1], "sigma_max");
+  EXPECT_EQ(scols[gap - 1], "index_plus_one");
   EXPECT_EQ(scols[gap + 1], "gap_wall");
 }
 

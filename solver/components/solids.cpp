@@ -90,6 +90,11 @@ void Solids::values(const Simulation& sim, std::vector<double>& out) const {
   out.push_back(sim.kinetic_energy() + elastic_energy_);
 }
 
+void Solids::solid_values(const Simulation& sim, int k, std::vector<double>& out) const {
+  const SolidDiagnostics& d = sim.solid_diagnostics()[std::size_t(k)];
+  for (double x : {d.area, d.cx, d.cy, d.u, d.v, d.sigma_max}) out.push_back(x);
+}
+
 void Solids::frame_fields(FrameFields& out) const {
   const Grid& g = grid_;
   Field& phi = out.owned.emplace_back(g.nx, g.ny, Grid::ng, 1e30);

@@ -11,8 +11,9 @@
 //  * eq. (5.2), `stress_force`: every solid's stress (its constitutive law,
 //    kernels/constitutive.hpp), blended into the global tensor, and its divergence as a force;
 //  * section 4, `explicit_dt`: the shear-wave limit of the explicit stress.
-// Its output is its own: the diagnostics columns elastic_energy and total_energy, and the
-// VTK fields phi, xi, normal_stress and stress_*.
+// Its output is its own: the diagnostics columns elastic_energy and total_energy, the
+// per-solid columns of solids.csv (area, centroid, velocity, sigma_max), and the VTK fields
+// phi, xi, normal_stress and stress_*.
 // Its checkpoint records are those the Simulation wrote for the solids before they were a
 // component (the count, then each solid's window and arrays); the Simulation registers
 // them where they were (register_state), so checkpoints keep their layout. The blended
@@ -48,6 +49,12 @@ class Solids : public Component {
   std::vector<std::string> columns() const override { return {"elastic_energy", "total_energy"}; }
   void values(const Simulation& sim, std::vector<double>& out) const override;
   const char* columns_after() const override { return "wall_time"; }
+  /// solids.csv: each solid's area, centroid, mean velocity and largest stress (from the
+  /// per-step cache, diagnostics()), first after the row's step, time and solid: the loads
+  /// fx, fy, torque, which the rigid bodies or the control-volume forces fill, follow.
+  std::vector<std::string> solid_columns() const override { return {"area", "cx", "cy", "u", "v", "sigma_max"}; }
+  void solid_values(const Simulation& sim, int k, std::vector<double>& out) const override;
+  const char* solid_columns_after() const override { return "solid"; }
   /// VTK frames: phi and xi of the solid nearest each cell (smallest phi; xi 0 outside
   /// every band, phi capped at the widest band), the mean normal stress (sxx + syy) / 2, and
   /// with an elastic solid the blended tensor stress_xx, stress_xy, stress_yy.

@@ -153,13 +153,15 @@ class Component {
   /// Its diagnostics.csv columns (fixed for the run) and their values for the current state.
   virtual std::vector<std::string> columns() const { return {}; }
   virtual void values(const Simulation&, std::vector<double>& /*out*/) const {}
-  /// Where they go: right after the built-in column of this name (solver/model/diagnostics.cpp)
-  /// or the column of this name of a component placed before it (the solids' total_energy),
-  /// or (null, or a column this run does not write) after every built-in column, in the
-  /// order the components were added.
+  /// Where they go: right after the built-in column of this name (solver/model/diagnostics.cpp),
+  /// or after the columns of a component placed before it that writes a column of this name
+  /// (a component's columns stay together: contact's follow the solids' total_energy), or
+  /// (null, or a column this run does not write) after every built-in column, in the order
+  /// the components were added.
   virtual const char* columns_after() const { return nullptr; }
   /// Its solids.csv columns (fixed for the run), the values of solid k for the current
-  /// state, and where they go (as columns_after, among the per-solid columns).
+  /// state, and where they go (as columns_after, among the per-solid columns; "solid", the
+  /// last of the leading step, time, solid, puts them first: the solids' own).
   virtual std::vector<std::string> solid_columns() const { return {}; }
   virtual void solid_values(const Simulation&, int /*k*/, std::vector<double>& /*out*/) const {}
   virtual const char* solid_columns_after() const { return nullptr; }

@@ -17,8 +17,7 @@ struct RowState {
   const Simulation& sim;
   double last_dt;
   double wall_s;
-  double kinetic_energy;  ///< computed once: two columns use it
-  const std::vector<SolidDiagnostics>& solid;  ///< Simulation's per-step cache
+  double kinetic_energy;  ///< computed once for the row
 };
 
 struct Column {
@@ -40,19 +39,12 @@ const Column kColumns[] = {
 // (then, with solids, elastic_energy and total_energy: the solids' component's columns, placed
 // right after wall_time, solver/components/solids.hpp; contact's after those)
 
-/// The columns of solids.csv after step, time and solid: one row per solid and output step.
+/// The built-in columns of solids.csv (one row per solid and output step), after step, time
+/// and solid and the solids' component's own (area, cx, cy, u, v, sigma_max, placed after
+/// "solid": solver/components/solids.hpp).
 struct SolidColumn {
   const char* name;
   double (*value)(const RowState&, int k);
-};
-
-const SolidColumn kSolidColumns[] = {
-    {"area",      [](const RowState& r, int k) { return r.solid[k].area; }},
-    {"cx",        [](const RowState& r, int k) { return r.solid[k].cx; }},
-    {"cy",        [](const RowState& r, int k) { return r.solid[k].cy; }},
-    {"u",         [](const RowState& r, int k) { return r.solid[k].u; }},
-    {"v",         [](const RowState& r, int k) { return r.solid[k].v; }},
-    {"sigma_max", [](const RowState& r, int k) { return r.solid[k].sigma_max; }},
 };
 
 /// The force the columns below report (output.body_force): a rigid body's direct forcing,
@@ -60,7 +52,7 @@ const SolidColumn kSolidColumns[] = {
 /// (Simulation::solid_load); only called for a solid that has one (has_force).
 const BodyLoad& body_load(const Simulation& sim, int k) { return *sim.solid_load(k); }
 
-/// solids.csv columns after those for every solid k with a force (a rigid solid, motion != "free";
+/// solids.csv columns for every solid k with a force (a rigid solid, motion != "free";
 /// with output.body_force = "control_volume" also a free soft solid, not a clamped one):
 /// the fluid's force and torque on it (drag and lift for a flow along x); nan on the
 /// rows of the other solids.
@@ -93,15 +85,16 @@ bool any_force(const Simulation& sim) {
   return false;
 }
 
-/// The parts of a row in order: every built-in column (as `builtin` takes them), each
-/// followed by the components whose `after` names it, each of those followed in turn by the
-/// components whose `after` names one of its own columns (`names`), then the components
+/// The parts of a row in order: the components whose `after` names `lead` (the last of the
+/// row's fixed leading columns, if any), then every built-in column (as `builtin` takes them),
+/// each followed by the components whose `after` names it, each of those followed in turn by
+/// the components whose `after` names one of its own columns (`names`), then the components
 /// placed after none (solver/model/component.hpp: columns_after, solid_columns_after), in the
 /// order added.
 template <class Builtin, class Comp>
 void in_row_order(const Simulation& sim, const std::vector<const char*>& builtin_names, Builtin&& builtin,
                   const char* (Component::*after)() const, std::vector<std::string> (Component::*names)() const,
-                  Comp&& comp) {
+                  Comp&& comp, const char* lead = nullptr) {
   std::vector<const Component*> placed;
   const auto is_placed = [&](const Component* c) { return std::find(placed.begin(), placed.end(), c) != placed.end(); };
   const std::function<void(const char*)> follow = [&](const char* column) {
@@ -113,6 +106,7 @@ void in_row_order(const Simulation& sim, const std::vector<const char*>& builtin
       for (const std::string& own : ((*c).*names)()) follow(own.c_str());
     }
   };
+  if (lead) follow(lead);
   for (std::size_t n = 0; n < builtin_names.size(); ++n) {
     builtin(n);
     follow(builtin_names[n]);
@@ -152,7 +146,7 @@ std::vector<std::string> diagnostic_columns(const Simulation& sim) {
 
 std::vector<double> diagnostic_values(const Simulation& sim, double last_dt, double wall_s) {
   const auto cols = global_columns(sim);
-  const RowState r{sim, last_dt, wall_s, sim.kinetic_energy(), sim.solid_diagnostics()};
+  const RowState r{sim, last_dt, wall_s, sim.kinetic_energy()};
   std::vector<double> v;
   in_row_order(
       sim, names_of(cols), [&](std::size_t n) { v.push_back(cols[n]->value(r)); }, &Component::columns_after,
@@ -166,18 +160,16 @@ namespace refmap {
 
 namespace {
 
-/// The built-in per-solid columns of this run, in order, and whether each is written for
-/// every solid (else only for the solids with a force).
+/// The built-in per-solid columns of this run, in order: the loads, only for the solids
+/// with a force (nan on the other rows).
 struct SolidPart {
   const SolidColumn* col;
-  enum { All, Force } rows;
 };
 
 std::vector<SolidPart> solid_parts(const Simulation& sim) {
   std::vector<SolidPart> parts;
-  for (const SolidColumn& col : kSolidColumns) parts.push_back({&col, SolidPart::All});
   if (any_force(sim))
-    for (const SolidColumn& col : kForceColumns) parts.push_back({&col, SolidPart::Force});
+    for (const SolidColumn& col : kForceColumns) parts.push_back({&col});
   return parts;
 }
 
@@ -195,16 +187,18 @@ std::vector<std::string> solid_columns(const Simulation& sim) {
   const auto parts = solid_parts(sim);
   in_row_order(
       sim, names_of(parts), [&](std::size_t n) { c.push_back(parts[n].col->name); }, &Component::solid_columns_after,
-      &Component::solid_columns, [&](const Component& comp) {
+      &Component::solid_columns,
+      [&](const Component& comp) {
         for (const std::string& name : comp.solid_columns()) c.push_back(name);
-      });
+      },
+      "solid");
   return c;
 }
 
 std::vector<std::vector<double>> solid_values(const Simulation& sim) {
   const int nsolids = int(sim.solids().size());
   if (nsolids == 0) return {};
-  const RowState r{sim, 0.0, 0.0, 0.0, sim.solid_diagnostics()};  // no global column is read
+  const RowState r{sim, 0.0, 0.0, 0.0};  // no global column is read
   const auto parts = solid_parts(sim);
   const auto names = names_of(parts);
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -216,12 +210,10 @@ std::vector<std::vector<double>> solid_values(const Simulation& sim) {
     in_row_order(
         sim, names,
         [&](std::size_t n) {
-          const SolidPart& p = parts[n];
-          const bool written = p.rows == SolidPart::All || force;
-          v.push_back(written ? p.col->value(r, k) : nan);
+          v.push_back(force ? parts[n].col->value(r, k) : nan);
         },
         &Component::solid_columns_after, &Component::solid_columns,
-        [&](const Component& comp) { comp.solid_values(sim, k, v); });
+        [&](const Component& comp) { comp.solid_values(sim, k, v); }, "solid");
   }
   return rows;
 }
