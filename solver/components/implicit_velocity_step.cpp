@@ -5,6 +5,7 @@
 
 #include "kernels/constitutive.hpp"
 #include "kernels/solid_stress.hpp"
+#include "solver/components/option_names.hpp"
 #include "solver/io/key_def.hpp"
 #include "solver/io/toml_reader.hpp"
 #include "solver/model/boundary.hpp"

@@ -21,21 +21,18 @@
 // time.solid_picard_iterations, which sets the solver's tolerance per pass, counts its
 // cycles and subtracts A(eta) of the last pass's change (solver/model/solid_picard.cpp, through
 // solver() and add_solid_viscosity).
-#include <span>
 #include <string>
 #include <vector>
 
 #include "core/field.hpp"
-#include "solver/io/enum_names.hpp"
 #include "solver/model/component.hpp"
 #include "solver/model/config.hpp"
 #include "solver/model/implicit_step.hpp"
 
 namespace refmap {
 
-/// The scene names of time.solid_picard_force. The step's own [time] keys (solid_implicit_k ...
-/// implicit_tol) are its kind's (implicit_velocity_step_kind, implicit_velocity_step.cpp).
-std::span<const OptionName<PicardForce>> option_names(PicardForce);
+// The step's own [time] keys (solid_implicit_k ... implicit_tol) are its kind's
+// (implicit_velocity_step_kind, implicit_velocity_step.cpp).
 
 class ImplicitVelocityStep : public Component {
  public:

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "solver/components/option_names.hpp"
 #include "solver/io/checkpoint_io.hpp"
 #include "solver/io/key_def.hpp"
 #include "solver/io/toml_reader.hpp"

@@ -25,11 +25,9 @@
 // `[[solid]]` (motion, forcing, path, pivot, clamp); the solids' parser
 // (solver/components/solids_keys.cpp) calls the readers below at their place in each table.
 #include <memory>
-#include <span>
 #include <string>
 #include <vector>
 
-#include "solver/io/enum_names.hpp"
 #include "solver/model/component.hpp"
 #include "solver/model/config.hpp"
 #include "solver/model/rigid_body.hpp"
@@ -37,11 +35,6 @@
 namespace refmap {
 
 class TomlTable;
-
-// the scene names of the rigid bodies' options
-std::span<const OptionName<SolidMotion>> option_names(SolidMotion);
-std::span<const OptionName<BodyForcing>> option_names(BodyForcing);
-std::span<const OptionName<ForcingInterpolation>> option_names(ForcingInterpolation);
 
 /// Solid `s`'s motion and, for a rigid body, its forcing (before its material: a rigid body
 /// takes no `mu_s`). Throws SceneError on bad input.

@@ -1,9 +1,12 @@
-// The solids' kind (solver/components/solids_keys.hpp): their keys, the scene names of their
-// options, and the parser from `[solids]` and `[[solid]]` into Config::solid_opt and
-// Config::solids. The loader calls it (ComponentKind::configure) after its own tables and
+// The solids' kind (solver/model/component_kind.hpp): the keys of `[solids]` (the options
+// every solid shares) and of `[[solid]]` (each solid's shape, material and initial velocity;
+// a rigid body's keys in the same table are the rigid bodies' kind's,
+// solver/components/rigid_bodies.cpp), the scene names of their options
+// (solver/components/option_names.hpp), and the parser into Config::solid_opt and
+// Config::solids, which the core reads too (the loader's start checks, contact, the markers,
+// the Simulation). The loader calls it (ComponentKind::configure) after its own tables and
 // after `[suspension]` has appended its particles to `[[solid]]` (solver/scene/scene.cpp).
-#include "solver/components/solids_keys.hpp"
-
+// The Solids component itself is made by the Simulation (solver/components/solids.hpp).
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -12,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/components/option_names.hpp"
 #include "solver/components/rigid_bodies.hpp"
 #include "solver/io/key_def.hpp"
 #include "solver/io/toml_reader.hpp"

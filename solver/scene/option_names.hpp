@@ -7,9 +7,7 @@
 #include <span>
 
 #include "kernels/advection.hpp"
-#include "solver/components/implicit_velocity_step.hpp"
-#include "solver/components/rigid_bodies.hpp"
-#include "solver/components/solids_keys.hpp"
+#include "solver/components/option_names.hpp"
 #include "solver/io/enum_names.hpp"
 #include "solver/model/config.hpp"
 
@@ -27,12 +25,10 @@ std::span<const OptionName<JumpFlux>> option_names(JumpFlux);
 std::span<const OptionName<Splitting>> option_names(Splitting);
 
 // Declared elsewhere, with the names: the pressure solver's options (solver/pressure/poisson.hpp),
-// the shapes (solver/model/shape_params.hpp), and the options of the components that parse their
-// own keys: the solids' (solver/components/solids_keys.hpp), the rigid bodies'
-// (solver/components/rigid_bodies.hpp), the implicit step's time.solid_picard_force
-// (solver/components/implicit_velocity_step.hpp), the body-force estimator
-// (solver/components/control_volume_forces.hpp). The solids', rigid bodies' and implicit
-// step's headers are included here, so the loader and the command line see those names
-// through this header as before.
+// the shapes (solver/model/shape_params.hpp), the body-force estimator
+// (solver/components/control_volume_forces.hpp), and the options whose keys the solids, the
+// rigid bodies and the implicit step parse themselves (solver/components/option_names.hpp,
+// included here, so the loader and the command line see those names through this header as
+// before).
 
 }  // namespace refmap
