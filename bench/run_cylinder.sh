@@ -47,7 +47,7 @@ export OMP_WAIT_POLICY=PASSIVE
 run() {  # run VARIANT NAME DX THREADS DT [extra --set ..., a later time.max_steps wins]
   local variant=$1 name=$1_$2 dx=$3 threads=$4 dt=$5
   shift 5
-  # a variant is a forcing with options: <forcing>[+hold][+inc][+rc][+quad] (+hold: solid[0].forcing_hold,
+  # a variant is a forcing with options: <forcing>[+hold][+inc][+rc][+quad][+ap] (+hold: solid[0].forcing_hold,
   # +inc: time.splitting = "increment"; docs/bodies.md, docs/method.md)
   # Every option is set either way, since the scene as shipped is sharp+hold+inc+rc+quad: a
   # variant without "+hold" runs without held cells, and so on.
@@ -69,6 +69,12 @@ run() {  # run VARIANT NAME DX THREADS DT [extra --set ..., a later time.max_ste
   case "$variant" in
     *+quad*) opts+=(--set 'solid[0].forcing_interpolation="quadratic"') ;;
     *) opts+=(--set 'solid[0].forcing_interpolation="linear"') ;;
+  esac
+  # +ap: solid[0].forcing_faces = "aperture" (sharp forcing only: the cut faces as cut-cell faces,
+  # docs/bodies.md)
+  case "$variant" in
+    *+ap*) opts+=(--set 'solid[0].forcing_faces="aperture"') ;;
+    *) opts+=(--set 'solid[0].forcing_faces="staircase"') ;;
   esac
   if [ "${REUSE:-0}" = "1" ] && [ -f "$RAW/$name/timings.csv" ]; then
     echo "cylinder_re20: $name kept" >&2

@@ -454,6 +454,17 @@ TEST(Bodies, SceneErrors) {
   EXPECT_NE(error(body_toml("a", circle(0.5, 0.5, 0.1), "motion = \"fixed\"\nforcing_interpolation = \"quadratic\"\n"))
                 .find("forcing_interpolation: only with forcing = \"interpolated\" or \"sharp\""),
             std::string::npos);
+  // forcing_faces = "aperture": the sharp forcing of a fixed body only (docs/bodies.md)
+  EXPECT_NE(error(body_toml("a", circle(0.5, 0.5, 0.1), "motion = \"fixed\"\nforcing_faces = \"aperture\"\n"))
+                .find("forcing_faces: only with forcing = \"sharp\""),
+            std::string::npos);
+  EXPECT_NE(error(body_toml("a", circle(0.5, 0.5, 0.1),
+                            "motion = \"prescribed\"\nforcing = \"sharp\"\nforcing_faces = \"aperture\"\n"))
+                .find("forcing_faces: \"aperture\" only with motion = \"fixed\""),
+            std::string::npos);
+  EXPECT_EQ(error(body_toml("a", circle(0.5, 0.5, 0.1),
+                            "motion = \"fixed\"\nforcing = \"sharp\"\nforcing_faces = \"aperture\"\n")),
+            "(loaded)");
   // a clamped pair may overlap; another pair may not
   EXPECT_EQ(error(post + disc_toml("flag", 0.42, 0.5, 0.1, 1.0, "clamp = \"post\"\n")), "(loaded)");
   EXPECT_NE(error(post + disc_toml("flag", 0.42, 0.5, 0.1)).find("overlaps"), std::string::npos);

@@ -27,6 +27,7 @@ std::span<const OptionName<SolidVelocity>> option_names(SolidVelocity);
 std::span<const OptionName<SolidMotion>> option_names(SolidMotion);
 std::span<const OptionName<BodyForcing>> option_names(BodyForcing);
 std::span<const OptionName<ForcingInterpolation>> option_names(ForcingInterpolation);
+std::span<const OptionName<CutFaces>> option_names(CutFaces);
 // the implicit velocity step
 std::span<const OptionName<PicardForce>> option_names(PicardForce);
 

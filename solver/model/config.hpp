@@ -46,6 +46,12 @@ enum class BodyForcing { Diffuse, Interpolated, Sharp };
 /// interpolated and sharp forcings set a fluid cell next to the surface (rigid_body.cpp):
 /// Linear, between the surface and one image point; Quadratic, through the surface and two.
 enum class ForcingInterpolation { Linear, Quadratic };
+/// SolidSpec::forcing_faces (forcing = "sharp"): the faces of the cells inside. Staircase,
+/// closed (beta = 0, the body's velocity: the normal flux stops on the staircase of inside
+/// cells); Aperture, a cut cell's face: beta times the face's open (phi > 0) fraction a and
+/// the mean velocity a u_open + (1 - a) u_body, u_open from the forced cells' normal profile
+/// (the normal flux stops on phi = 0; rigid_body.cpp).
+enum class CutFaces { Staircase, Aperture };
 /// SolidsOptions::extrapolation: Algorithm 2 (least squares) or the PDE baseline.
 enum class ExtrapolationMethod { Lsq, Pde };
 /// SolidsOptions::stress_form: discretisation of the solid stress divergence. Variational:
@@ -149,6 +155,8 @@ struct SolidSpec {
   bool forcing_hold = false;
   /// forcing = "interpolated" or "sharp": the normal profile of the cells next to the surface
   ForcingInterpolation forcing_interpolation = ForcingInterpolation::Linear;
+  /// forcing = "sharp": closed cut faces or cut-cell apertures (rigid_body.cpp)
+  CutFaces forcing_faces = CutFaces::Staircase;
   /// Prescribed: the centre's path x(t), y(t) and the rotation rate omega(t) (expressions
   /// of t; the path starts at the shape's centre).
   std::string path_x, path_y, rotation_rate;

@@ -108,6 +108,12 @@ struct RigidPose {
 /// (c2 = 0); Quadratic: the parabola through all three (exact for u = a n + b n^2).
 std::array<double, 2> normal_profile_weights(double phi, double h, ForcingInterpolation order);
 
+/// forcing_faces = "aperture": the open (phi > 0) part of a cut face: its fraction a of the
+/// face, its centroid (ox, oy) and phi there, and the centroid (sx, sy) of the closed part.
+struct FaceOpening {
+  double a = 0, ox = 0, oy = 0, phi_o = 0, sx = 0, sy = 0;
+};
+
 /// The fluid's force and torque (about the reference point) on a body at the last step.
 struct BodyLoad {
   double fx = 0, fy = 0, torque = 0;
@@ -144,6 +150,10 @@ class RigidBodies {
   /// inside (phi < 0) are CUT: clear_cut_faces zeroes a face field there (the Poisson
   /// coefficients beta and the face accelerations G_f: no pressure acts across them, the
   /// projection leaves them alone), impose_cut_faces sets the face velocities to the body's,
+  /// (forcing_faces = "aperture": clear_cut_faces multiplies beta by the face's open fraction
+  /// and impose_cut_faces sets the face's mean velocity, the flux of its open part from the
+  /// forced cells' profile plus the body's over the rest; inside cells with an open face
+  /// then stay in the solve),
   /// fill_inside_pressure sets the pressure of the cells inside from the fluid's.
   bool cuts_faces() const;
   void clear_cut_faces(const std::vector<std::unique_ptr<Solid>>& solids, Field& fx, Field& fy, const Grid& g) const;
@@ -176,6 +186,8 @@ class RigidBodies {
   std::vector<BodyLoad> load_;
   double weight(int k, const Solid& s, int i, int j, double inv_dx) const;
   bool inside(const std::vector<std::unique_ptr<Solid>>& solids, int k, int gi, int gj) const;
+  FaceOpening opening(const std::vector<std::unique_ptr<Solid>>& solids, int k, const Grid& g, int axis, int i,
+                      int j) const;
   template <class F>
   void each_cut_face(const std::vector<std::unique_ptr<Solid>>& solids, const Grid& g, F&& f) const;
   /// region_change of the last step
@@ -190,6 +202,9 @@ class RigidBodies {
   using EndVelocity = RegionState;
   std::vector<EndVelocity> end_;
   std::vector<std::array<double, 3>> held_;  ///< add_held's sums of this step (x, y, angular)
+  /// forcing_faces = "aperture": each cut face's mean velocity (axis, i, j, value), set by
+  /// the last forcing and imposed by impose_cut_faces
+  std::vector<std::vector<std::array<double, 4>>> aperture_faces_;
   bool have_region_ = false;  ///< region_ holds a previous step (false before the first)
   double t0_ = 0.0;
 };
