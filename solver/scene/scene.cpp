@@ -20,7 +20,6 @@
 #include <fstream>
 #include <limits>
 #include <memory>
-#include <optional>
 #include <set>
 #include <sstream>
 #include <string_view>
@@ -30,7 +29,6 @@
 #include "solver/io/expression.hpp"
 #include "solver/scene/memory_estimate.hpp"
 #include "solver/scene/option_names.hpp"
-#include "solver/model/rigid_body.hpp"
 #include "solver/scene/scene_keys.hpp"
 #include "solver/scene/suspension.hpp"
 #include "solver/model/shape.hpp"
