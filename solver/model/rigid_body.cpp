@@ -144,6 +144,12 @@ double bilinear(const Grid& g, const PeriodicWrap& w, double x, double y, Q&& q)
   return (1 - a) * (1 - b) * q(i, j) + a * (1 - b) * q(i + 1, j) + (1 - a) * b * q(i, j + 1) + a * b * q(i + 1, j + 1);
 }
 
+/// The exact level set phi0 of a body of shape `shape` at pose `pose` at the point (x, y).
+double body_phi(const Shape& shape, const RigidPose& pose, double x, double y) {
+  const auto xi = pose.xi(x, y);
+  return shape.phi0(xi[0], xi[1]);
+}
+
 /// forcing_faces = "aperture": the open (phi > 0) part of grid face (axis, i, j) of a body of
 /// shape `shape` at pose `pose`, phi linear between the face's ends (the shape's exact phi0
 /// there): its fraction a of the face, the centroid (ox, oy) and phi there (phi_o) of the open
@@ -160,11 +166,7 @@ FaceOpening face_opening(const Shape& shape, const RigidPose& pose, const Grid& 
     x1 = g.xc(i) - 0.5 * g.dx;
     x2 = x1 + g.dx;
   }
-  auto phi = [&](double x, double y) {
-    const auto xi = pose.xi(x, y);
-    return shape.phi0(xi[0], xi[1]);
-  };
-  const double p1 = phi(x1, y1), p2 = phi(x2, y2);
+  const double p1 = body_phi(shape, pose, x1, y1), p2 = body_phi(shape, pose, x2, y2);
   FaceOpening o;
   o.ox = o.sx = 0.5 * (x1 + x2);
   o.oy = o.sy = 0.5 * (y1 + y2);
@@ -364,10 +366,7 @@ void RigidBodies::force(const std::vector<std::unique_ptr<Solid>>& solids, Field
         auto& F = aperture_faces_[k];
         F.clear();
         const Shape& shape = s.shape();
-        auto phi0 = [&](double x, double y) {
-          const auto xi = p.xi(x, y);
-          return shape.phi0(xi[0], xi[1]);
-        };
+        auto phi0 = [&](double x, double y) { return body_phi(shape, p, x, y); };
         each_cut_face(solids, g, [&](int kk, int axis, int fi, int fj) {
           if (kk != int(k)) return;
           const FaceOpening o = opening(solids, int(k), g, axis, fi, fj);
@@ -646,9 +645,9 @@ void RigidBodies::impose_cut_faces(const std::vector<std::unique_ptr<Solid>>& so
   });
   // forcing_faces = "aperture": the mean velocity over the face that the last forcing set
   // (before the first forcing: the body's, above)
-  for (std::size_t k = 0; k < specs_.size(); ++k)
-    if (specs_[k].rigid() && specs_[k].forcing == BodyForcing::Sharp && specs_[k].forcing_faces == CutFaces::Aperture)
-      for (const auto& f : aperture_faces_[k]) (f[0] == 0.0 ? uf : vf)(int(f[1]), int(f[2])) = f[3];
+  // (empty for every other body)
+  for (const auto& faces : aperture_faces_)
+    for (const auto& f : faces) (f[0] == 0.0 ? uf : vf)(int(f[1]), int(f[2])) = f[3];
 }
 
 void RigidBodies::fill_inside_pressure(const std::vector<std::unique_ptr<Solid>>& solids, Field& p,
